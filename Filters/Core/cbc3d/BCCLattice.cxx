@@ -1,0 +1,246 @@
+#include "cbc3d/BCCLattice.h"
+
+#include "cbc3d/Parallel.h"
+#include "cbc3d/TetGeometry.h"
+#include "cbc3d/TetVoxelSampler.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <utility>
+
+namespace cbc3d
+{
+namespace
+{
+// Bytes per lattice cube at peak: the 12 candidate slots, the vertex map, and the kept tets
+// and points in the core mesh and again in the VTK output (an upper bound: all kept).
+constexpr double BytesPerCube = 1300.0;
+
+// The lattice in the image-axis frame: millimetres along the image axes from the image origin.
+struct LatticeFrame
+{
+  Eigen::Vector3d CornerOrigin; // position of corner (0,0,0)
+  double H = 0.0;               // cube edge
+  std::array<std::int64_t, 3> Cubes = { 0, 0, 0 };
+
+  std::int64_t CubeCount() const { return this->Cubes[0] * this->Cubes[1] * this->Cubes[2]; }
+  std::int64_t CornerCount() const
+  {
+    return (this->Cubes[0] + 1) * (this->Cubes[1] + 1) * (this->Cubes[2] + 1);
+  }
+  std::int64_t CornerId(std::int64_t i, std::int64_t j, std::int64_t k) const
+  {
+    return i + (this->Cubes[0] + 1) * (j + (this->Cubes[1] + 1) * k);
+  }
+  // Centres are numbered after the corners, in cube order.
+  std::int64_t CentreId(std::int64_t cube) const { return this->CornerCount() + cube; }
+
+  // Position (image-axis frame) of a vertex id.
+  Eigen::Vector3d Position(std::int64_t id) const
+  {
+    const bool centre = id >= this->CornerCount();
+    const std::int64_t local = centre ? id - this->CornerCount() : id;
+    const std::int64_t nx = this->Cubes[0] + (centre ? 0 : 1);
+    const std::int64_t ny = this->Cubes[1] + (centre ? 0 : 1);
+    const Eigen::Vector3d grid(double(local % nx), double((local / nx) % ny), double(local / (nx * ny)));
+    const double shift = centre ? 0.5 : 0.0;
+    return this->CornerOrigin + this->H * (grid.array() + shift).matrix();
+  }
+
+  // The tet in slot (cube, axis, edge): the centres of this cube and of its neighbour along
+  // `axis`, and one edge of the square face they share. False when the neighbour is outside.
+  bool SlotTet(std::int64_t cube, int axis, int edge, std::array<std::int64_t, 4>& ids) const
+  {
+    std::array<std::int64_t, 3> c = { cube % this->Cubes[0], (cube / this->Cubes[0]) % this->Cubes[1],
+      cube / (this->Cubes[0] * this->Cubes[1]) };
+    if (c[axis] + 1 >= this->Cubes[axis])
+    {
+      return false;
+    }
+    std::array<std::int64_t, 3> step = { 0, 0, 0 };
+    step[axis] = 1;
+    const std::int64_t neighbour = cube + step[0] + this->Cubes[0] * (step[1] + this->Cubes[1] * step[2]);
+    // The face's corners, walked around the square: (0,0) (1,0) (1,1) (0,1) in the two other axes.
+    static constexpr int square[5][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 }, { 0, 0 } };
+    const int u = (axis + 1) % 3;
+    const int v = (axis + 2) % 3;
+    std::array<std::int64_t, 4> corner{};
+    for (int end = 0; end < 2; ++end)
+    {
+      std::array<std::int64_t, 3> g = c;
+      g[axis] += 1;
+      g[u] += square[edge + end][0];
+      g[v] += square[edge + end][1];
+      corner[end] = this->CornerId(g[0], g[1], g[2]);
+    }
+    ids = { this->CentreId(cube), this->CentreId(neighbour), corner[0], corner[1] };
+    return true;
+  }
+};
+
+bool MakeFrame(const LabelImage& image, double h, LatticeFrame& frame)
+{
+  std::array<int, 3> lower, upper;
+  if (!TissueIndexBounds(image, lower, upper))
+  {
+    return false;
+  }
+  frame.H = h;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double lo = image.Spacing[a] * lower[a];
+    const double hi = image.Spacing[a] * upper[a];
+    // One cube of margin on each side puts the outermost cube centres beyond the tissue box,
+    // so the tets between centres cover every tissue voxel centre.
+    frame.CornerOrigin[a] = lo - h;
+    frame.Cubes[a] = static_cast<std::int64_t>(std::floor((hi - lo) / h)) + 3;
+  }
+  return true;
+}
+
+std::string FormatBytes(double bytes)
+{
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(1) << bytes / (1024.0 * 1024.0 * 1024.0) << " GiB";
+  return out.str();
+}
+} // namespace
+
+double DefaultLatticeEdgeLength(const LabelImage& image)
+{
+  return 8.0 * image.Spacing.minCoeff();
+}
+
+double EstimateLatticeBytes(const LabelImage& image, double edgeLength)
+{
+  std::array<int, 3> lower, upper;
+  if (!TissueIndexBounds(image, lower, upper) || !(edgeLength > 0.0))
+  {
+    return 0.0;
+  }
+  double cubes = 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    cubes *= std::floor(image.Spacing[a] * (upper[a] - lower[a]) / edgeLength) + 3.0;
+  }
+  return cubes * BytesPerCube;
+}
+
+Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, TetMesh& mesh,
+  const Progress& progress)
+{
+  mesh = TetMesh();
+  const Status valid = ValidateLabelImage(image);
+  if (!valid.IsOk())
+  {
+    return valid;
+  }
+  const double h = params.EdgeLength == 0.0 ? DefaultLatticeEdgeLength(image) : params.EdgeLength;
+  if (!(h > 0.0) || !std::isfinite(h))
+  {
+    return Status::Error("the lattice edge length must be a positive number of millimetres");
+  }
+  const std::size_t limit =
+    params.MemoryLimitBytes > 0 ? params.MemoryLimitBytes : PhysicalMemoryBytes() / 2;
+  const double needed = EstimateLatticeBytes(image, h);
+  if (limit > 0 && needed > double(limit))
+  {
+    std::ostringstream msg;
+    msg << "a lattice of edge " << h << " mm over this image would need about "
+        << FormatBytes(needed) << " of memory, more than the " << FormatBytes(double(limit))
+        << " allowed; choose a larger lattice size";
+    return Status::Error(msg.str());
+  }
+
+  LatticeFrame frame;
+  MakeFrame(image, h, frame);
+  const std::int64_t cubes = frame.CubeCount();
+  std::vector<std::int32_t> slotLabel(12 * cubes);
+  std::vector<std::uint8_t> slotKept(12 * cubes, 0);
+
+  // Pass 1, parallel: sample every candidate tet; each writes only its own slots.
+  std::atomic<bool> stop(false);
+  std::atomic<std::int64_t> done(0);
+  const std::int64_t stride = std::min<std::int64_t>(cubes / 100 + 1, 1000);
+#pragma omp parallel num_threads(ThreadCount(params.NumberOfThreads))
+  {
+    LabelCounts counts;
+#pragma omp for schedule(dynamic, 64)
+    for (std::int64_t cube = 0; cube < cubes; ++cube)
+    {
+      if (stop.load(std::memory_order_relaxed))
+      {
+        continue;
+      }
+      for (int slot = 0; slot < 12; ++slot)
+      {
+        std::array<std::int64_t, 4> ids;
+        if (!frame.SlotTet(cube, slot / 4, slot % 4, ids))
+        {
+          continue;
+        }
+        std::array<Eigen::Vector3d, 4> corners;
+        for (int v = 0; v < 4; ++v)
+        {
+          corners[v] = image.Origin + image.Direction * frame.Position(ids[v]);
+        }
+        SampleTetLabels(image, corners, counts);
+        std::int32_t label = 0;
+        if (counts.MajorityTissue(image, label))
+        {
+          slotKept[12 * cube + slot] = 1;
+          slotLabel[12 * cube + slot] = label;
+        }
+      }
+      const std::int64_t finished = done.fetch_add(1, std::memory_order_relaxed) + 1;
+      if (progress && ThreadId() == 0 && finished % stride == 0 &&
+        !progress(0.95 * double(finished) / double(cubes)))
+      {
+        stop.store(true, std::memory_order_relaxed);
+      }
+    }
+  }
+  if (stop.load())
+  {
+    return Status::Aborted();
+  }
+
+  // Pass 2, serial and in slot order, so the numbering is the same for any thread count.
+  std::vector<PointId> pointOf(frame.CornerCount() + cubes, -1);
+  for (std::int64_t slot = 0; slot < 12 * cubes; ++slot)
+  {
+    if (!slotKept[slot])
+    {
+      continue;
+    }
+    std::array<std::int64_t, 4> ids;
+    frame.SlotTet(slot / 12, int(slot % 12) / 4, int(slot % 4), ids);
+    Tet tet;
+    for (int v = 0; v < 4; ++v)
+    {
+      PointId& id = pointOf[ids[v]];
+      if (id < 0)
+      {
+        id = static_cast<PointId>(mesh.Points.size());
+        mesh.Points.push_back(image.Origin + image.Direction * frame.Position(ids[v]));
+      }
+      tet[v] = id;
+    }
+    const auto& p = mesh.Points;
+    if (SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) < 0.0)
+    {
+      std::swap(tet[2], tet[3]);
+    }
+    mesh.Tets.push_back(tet);
+    mesh.Labels.push_back(slotLabel[slot]);
+  }
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return Status::Ok();
+}
+} // namespace cbc3d

@@ -1,0 +1,40 @@
+#ifndef cbc3d_BCCLattice_h
+#define cbc3d_BCCLattice_h
+
+#include "cbc3d/LabelImage.h"
+#include "cbc3d/Progress.h"
+#include "cbc3d/Status.h"
+#include "cbc3d/TetMesh.h"
+
+#include <cstdint>
+
+namespace cbc3d
+{
+struct LatticeParams
+{
+  /// Edge of the lattice cube in mm (the paper's BCC_size); 0 = DefaultLatticeEdgeLength.
+  double EdgeLength = 0.0;
+  /// OpenMP threads; 0 = all cores.
+  int NumberOfThreads = 0;
+  /// Refuse a lattice whose estimated memory exceeds this (bytes); 0 = half the machine.
+  std::size_t MemoryLimitBytes = 0;
+};
+
+/// The paper's choice of 8 voxel spacings, measured along the finest image axis.
+double DefaultLatticeEdgeLength(const LabelImage& image);
+
+/// Estimated peak memory of BuildBCCLattice for this edge length, in bytes.
+double EstimateLatticeBytes(const LabelImage& image, double edgeLength);
+
+/// Fills the tissues' bounding box with a body-centred cubic lattice aligned with the image
+/// axes: the vertices are the cube corners and cube centres, and every pair of face-adjacent
+/// cube centres carries four tets (two edges of length h and four of length h*sqrt(3)/2, so
+/// four 60 degree and two 90 degree dihedral angles). Tets that hold no tissue sample are
+/// dropped; each kept tet takes its majority tissue label. The mesh is in world coordinates,
+/// every tet positively oriented even when the image direction is a reflection. Every tissue
+/// voxel centre lies in (or on the boundary of) some kept tet.
+Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, TetMesh& mesh,
+  const Progress& progress = nullptr);
+} // namespace cbc3d
+
+#endif

@@ -1,0 +1,109 @@
+#include "cbc3d/LabelImage.h"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+namespace cbc3d
+{
+bool LabelImage::IsBackground(std::int32_t label) const
+{
+  return std::find(this->BackgroundLabels.begin(), this->BackgroundLabels.end(), label) !=
+    this->BackgroundLabels.end();
+}
+
+Eigen::Vector3d LabelImage::IndexToWorld(const Eigen::Vector3d& index) const
+{
+  return this->Origin + this->Direction * index.cwiseProduct(this->Spacing);
+}
+
+Eigen::Vector3d LabelImage::WorldToIndex(const Eigen::Vector3d& world) const
+{
+  // Direction is orthonormal, so its inverse is its transpose.
+  return (this->Direction.transpose() * (world - this->Origin)).cwiseQuotient(this->Spacing);
+}
+
+std::vector<std::int32_t> LabelImage::TissueLabels() const
+{
+  std::set<std::int32_t> seen;
+  std::int32_t last = 0;
+  bool haveLast = false;
+  for (const std::int32_t label : this->Labels)
+  {
+    // Runs of one label are the common case in label maps; skip the set lookup for them.
+    if (haveLast && label == last)
+    {
+      continue;
+    }
+    last = label;
+    haveLast = true;
+    if (this->IsTissue(label))
+    {
+      seen.insert(label);
+    }
+  }
+  return std::vector<std::int32_t>(seen.begin(), seen.end());
+}
+
+Status ValidateLabelImage(const LabelImage& image)
+{
+  const auto& d = image.Dimensions;
+  if (d[0] < 2 || d[1] < 2 || d[2] < 2)
+  {
+    std::ostringstream msg;
+    msg << "the image is " << d[0] << " x " << d[1] << " x " << d[2]
+        << " voxels; a 3-D label map with at least 2 voxels along every axis is required";
+    return Status::Error(msg.str());
+  }
+  if (std::int64_t(image.Labels.size()) != image.VoxelCount())
+  {
+    return Status::Error("the label array does not have one value per voxel");
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!(image.Spacing[a] > 0.0) || !std::isfinite(image.Spacing[a]))
+    {
+      return Status::Error("the image spacing must be positive and finite along every axis");
+    }
+  }
+  const Eigen::Matrix3d gram = image.Direction.transpose() * image.Direction;
+  if (!gram.isApprox(Eigen::Matrix3d::Identity(), 1e-6))
+  {
+    return Status::Error(
+      "the image direction matrix is not orthonormal (sheared or scaled axes are not supported)");
+  }
+  std::array<int, 3> lower, upper;
+  if (!TissueIndexBounds(image, lower, upper))
+  {
+    return Status::Error("the image has no tissue: every voxel holds a background label");
+  }
+  return Status::Ok();
+}
+
+bool TissueIndexBounds(const LabelImage& image, std::array<int, 3>& lower,
+  std::array<int, 3>& upper)
+{
+  const auto& d = image.Dimensions;
+  lower = { d[0], d[1], d[2] };
+  upper = { -1, -1, -1 };
+  for (int k = 0; k < d[2]; ++k)
+  {
+    for (int j = 0; j < d[1]; ++j)
+    {
+      const std::int32_t* row = image.Labels.data() + image.VoxelIndex(0, j, k);
+      for (int i = 0; i < d[0]; ++i)
+      {
+        if (image.IsTissue(row[i]))
+        {
+          lower = { std::min(lower[0], i), std::min(lower[1], j), std::min(lower[2], k) };
+          upper = { std::max(upper[0], i), std::max(upper[1], j), std::max(upper[2], k) };
+        }
+      }
+    }
+  }
+  return upper[0] >= 0;
+}
+} // namespace cbc3d

@@ -1,0 +1,57 @@
+#ifndef cbc3d_LabelImage_h
+#define cbc3d_LabelImage_h
+
+#include "cbc3d/Status.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace cbc3d
+{
+/// A 3-D label map in its physical frame, the only way the core sees an image.
+///
+/// Voxel (i,j,k) has its centre at World = Origin + Direction * (Spacing .* (i,j,k)), the
+/// convention of vtkImageData. Direction has orthonormal columns and may be a reflection.
+/// Labels are stored x fastest. Every label that is not a background label is a tissue.
+struct LabelImage
+{
+  std::array<int, 3> Dimensions = { 0, 0, 0 };
+  Eigen::Vector3d Origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3d Spacing = Eigen::Vector3d::Ones();
+  Eigen::Matrix3d Direction = Eigen::Matrix3d::Identity();
+  std::vector<std::int32_t> Labels;
+  std::vector<std::int32_t> BackgroundLabels = { 0 };
+
+  std::int64_t VoxelCount() const
+  {
+    return std::int64_t(this->Dimensions[0]) * this->Dimensions[1] * this->Dimensions[2];
+  }
+  std::int64_t VoxelIndex(int i, int j, int k) const
+  {
+    return i + std::int64_t(this->Dimensions[0]) * (j + std::int64_t(this->Dimensions[1]) * k);
+  }
+  std::int32_t LabelAt(int i, int j, int k) const { return this->Labels[this->VoxelIndex(i, j, k)]; }
+  bool IsBackground(std::int32_t label) const;
+  bool IsTissue(std::int32_t label) const { return !this->IsBackground(label); }
+
+  /// Continuous index (i,j,k) to world, and back.
+  Eigen::Vector3d IndexToWorld(const Eigen::Vector3d& index) const;
+  Eigen::Vector3d WorldToIndex(const Eigen::Vector3d& world) const;
+
+  /// The tissue labels present in the image, sorted ascending.
+  std::vector<std::int32_t> TissueLabels() const;
+};
+
+/// Checks that the image is a usable 3-D label map: at least 2 voxels along every axis,
+/// positive spacing, an orthonormal direction, labels for every voxel, and one tissue voxel.
+Status ValidateLabelImage(const LabelImage& image);
+
+/// Index-space box of the tissue voxels (inclusive); false when the image has no tissue.
+bool TissueIndexBounds(const LabelImage& image, std::array<int, 3>& lower,
+  std::array<int, 3>& upper);
+} // namespace cbc3d
+
+#endif

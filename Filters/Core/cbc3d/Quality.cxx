@@ -1,0 +1,53 @@
+#include "cbc3d/Quality.h"
+
+#include "cbc3d/Parallel.h"
+#include "cbc3d/TetGeometry.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace cbc3d
+{
+void DihedralSummary::Merge(const DihedralSummary& other)
+{
+  this->Tets += other.Tets;
+  this->MinDegrees = std::min(this->MinDegrees, other.MinDegrees);
+  this->MaxDegrees = std::max(this->MaxDegrees, other.MaxDegrees);
+  this->Inverted += other.Inverted;
+}
+
+QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads)
+{
+  const int threads = ThreadCount(numberOfThreads);
+  std::vector<std::map<std::int32_t, DihedralSummary>> perThread(threads);
+  const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
+#pragma omp parallel num_threads(threads)
+  {
+    auto& local = perThread[ThreadId()];
+#pragma omp for schedule(static)
+    for (std::int64_t t = 0; t < count; ++t)
+    {
+      const Tet& tet = mesh.Tets[t];
+      const auto& p = mesh.Points;
+      const auto angles = DihedralAngles(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]);
+      const auto [lo, hi] = std::minmax_element(angles.begin(), angles.end());
+      DihedralSummary one;
+      one.Tets = 1;
+      one.MinDegrees = *lo * RadiansToDegrees;
+      one.MaxDegrees = *hi * RadiansToDegrees;
+      one.Inverted = SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) > 0.0 ? 0 : 1;
+      local[mesh.Labels[t]].Merge(one);
+    }
+  }
+  QualitySummary summary;
+  for (const auto& local : perThread)
+  {
+    for (const auto& [label, figures] : local)
+    {
+      summary.Tissues[label].Merge(figures);
+      summary.Overall.Merge(figures);
+    }
+  }
+  return summary;
+}
+} // namespace cbc3d

@@ -1,0 +1,34 @@
+#ifndef cbc3d_Quality_h
+#define cbc3d_Quality_h
+
+#include "cbc3d/TetMesh.h"
+
+#include <cstdint>
+#include <limits>
+#include <map>
+
+namespace cbc3d
+{
+/// Dihedral-angle figures of a set of tets, in degrees.
+struct DihedralSummary
+{
+  std::int64_t Tets = 0;
+  double MinDegrees = std::numeric_limits<double>::infinity();
+  double MaxDegrees = -std::numeric_limits<double>::infinity();
+  std::int64_t Inverted = 0; // tets with non-positive volume
+
+  void Merge(const DihedralSummary& other);
+};
+
+struct QualitySummary
+{
+  DihedralSummary Overall;
+  std::map<std::int32_t, DihedralSummary> Tissues; // keyed by label value
+};
+
+/// Minimum and maximum dihedral angle and inverted-tet count, overall and per tissue.
+/// Deterministic for any thread count (min/max/count reductions are exact).
+QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads = 0);
+} // namespace cbc3d
+
+#endif

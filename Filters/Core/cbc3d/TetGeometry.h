@@ -1,0 +1,22 @@
+#ifndef cbc3d_TetGeometry_h
+#define cbc3d_TetGeometry_h
+
+#include <Eigen/Core>
+
+#include <array>
+
+namespace cbc3d
+{
+using Vec3 = Eigen::Vector3d;
+
+/// Signed volume; positive for a tet oriented as VTK_TETRA expects.
+double SignedVolume(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3);
+
+/// The six interior dihedral angles in radians, at the edges in TetEdges order.
+std::array<double, 6> DihedralAngles(const Vec3& p0, const Vec3& p1, const Vec3& p2,
+  const Vec3& p3);
+
+constexpr double RadiansToDegrees = 57.295779513082320876798154814105;
+} // namespace cbc3d
+
+#endif

@@ -1,0 +1,30 @@
+#ifndef cbc3d_TetMesh_h
+#define cbc3d_TetMesh_h
+
+#include "cbc3d/Status.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace cbc3d
+{
+using PointId = std::int64_t;
+using Tet = std::array<PointId, 4>;
+
+/// A labelled tetrahedral mesh in world coordinates (structure of arrays).
+/// Tets follow VTK_TETRA's vertex order and are positively oriented (see TetTopology.h).
+struct TetMesh
+{
+  std::vector<Eigen::Vector3d> Points;
+  std::vector<Tet> Tets;
+  std::vector<std::int32_t> Labels; // one tissue label per tet
+};
+
+/// Checks that labels match tets, indices are in range, and every tet has positive volume.
+Status ValidateTetMesh(const TetMesh& mesh);
+} // namespace cbc3d
+
+#endif

@@ -1,0 +1,148 @@
+#include "cbc3d/TetVoxelSampler.h"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+
+namespace cbc3d
+{
+void LabelCounts::Add(std::int32_t label)
+{
+  for (auto& entry : this->Counts)
+  {
+    if (entry.first == label)
+    {
+      ++entry.second;
+      return;
+    }
+  }
+  this->Counts.emplace_back(label, 1);
+}
+
+std::int64_t LabelCounts::Total() const
+{
+  std::int64_t total = 0;
+  for (const auto& entry : this->Counts)
+  {
+    total += entry.second;
+  }
+  return total;
+}
+
+std::int64_t LabelCounts::TissueTotal(const LabelImage& image) const
+{
+  std::int64_t total = 0;
+  for (const auto& entry : this->Counts)
+  {
+    total += image.IsTissue(entry.first) ? entry.second : 0;
+  }
+  return total;
+}
+
+bool LabelCounts::MajorityTissue(const LabelImage& image, std::int32_t& label) const
+{
+  std::int64_t best = 0;
+  for (const auto& entry : this->Counts)
+  {
+    if (image.IsTissue(entry.first) &&
+      (entry.second > best || (entry.second == best && entry.first < label)))
+    {
+      best = entry.second;
+      label = entry.first;
+    }
+  }
+  return best > 0;
+}
+
+namespace
+{
+// Barycentric test in index space; a small tolerance makes points on faces count.
+struct IndexSpaceTet
+{
+  Eigen::Vector3d Base;
+  Eigen::Matrix3d ToBarycentric;
+  Eigen::Vector3d Lower, Upper;
+
+  explicit IndexSpaceTet(const std::array<Eigen::Vector3d, 4>& index)
+  {
+    this->Base = index[0];
+    Eigen::Matrix3d edges;
+    edges << index[1] - index[0], index[2] - index[0], index[3] - index[0];
+    this->ToBarycentric = edges.inverse();
+    this->Lower = this->Upper = index[0];
+    for (int v = 1; v < 4; ++v)
+    {
+      this->Lower = this->Lower.cwiseMin(index[v]);
+      this->Upper = this->Upper.cwiseMax(index[v]);
+    }
+  }
+
+  bool Contains(const Eigen::Vector3d& point) const
+  {
+    constexpr double tolerance = 1e-9;
+    const Eigen::Vector3d b = this->ToBarycentric * (point - this->Base);
+    return b.minCoeff() >= -tolerance && b.sum() <= 1.0 + tolerance;
+  }
+};
+
+// Samples each voxel at the centres of a subdivision^3 sub-grid; returns the samples taken.
+std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int subdivision,
+  LabelCounts& counts)
+{
+  const double step = 1.0 / subdivision;
+  const double offset = 0.5 * step - 0.5; // 0 at subdivision 1: the voxel centres
+  std::array<std::int64_t, 3> first, last;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double lo = std::max(tet.Lower[a], -0.5);
+    const double hi = std::min(tet.Upper[a], image.Dimensions[a] - 0.5);
+    first[a] = static_cast<std::int64_t>(std::ceil((lo - offset) / step - 1e-9));
+    last[a] = static_cast<std::int64_t>(std::floor((hi - offset) / step + 1e-9));
+  }
+  std::int64_t samples = 0;
+  Eigen::Vector3d point;
+  for (std::int64_t k = first[2]; k <= last[2]; ++k)
+  {
+    point[2] = offset + k * step;
+    for (std::int64_t j = first[1]; j <= last[1]; ++j)
+    {
+      point[1] = offset + j * step;
+      for (std::int64_t i = first[0]; i <= last[0]; ++i)
+      {
+        point[0] = offset + i * step;
+        if (!tet.Contains(point))
+        {
+          continue;
+        }
+        const int vi = std::clamp(static_cast<int>(std::lround(point[0])), 0, image.Dimensions[0] - 1);
+        const int vj = std::clamp(static_cast<int>(std::lround(point[1])), 0, image.Dimensions[1] - 1);
+        const int vk = std::clamp(static_cast<int>(std::lround(point[2])), 0, image.Dimensions[2] - 1);
+        counts.Add(image.LabelAt(vi, vj, vk));
+        ++samples;
+      }
+    }
+  }
+  return samples;
+}
+} // namespace
+
+void SampleTetLabels(const LabelImage& image, const std::array<Eigen::Vector3d, 4>& corners,
+  LabelCounts& counts)
+{
+  counts.Clear();
+  std::array<Eigen::Vector3d, 4> index;
+  for (int v = 0; v < 4; ++v)
+  {
+    index[v] = image.WorldToIndex(corners[v]);
+  }
+  const IndexSpaceTet tet(index);
+  for (int subdivision = 1; subdivision <= 16; subdivision *= 2)
+  {
+    if (SampleGrid(image, tet, subdivision, counts) > 0)
+    {
+      return;
+    }
+  }
+}
+} // namespace cbc3d

@@ -1,0 +1,184 @@
+#include "vtkCBC3DConvert.h"
+
+#include "vtkCBC3DArrayNames.h"
+
+#include <vtkAlgorithm.h>
+#include <vtkArrayDispatch.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDataArrayRange.h>
+#include <vtkIdTypeArray.h>
+#include <vtkImageData.h>
+#include <vtkIntArray.h>
+#include <vtkMatrix3x3.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+
+namespace
+{
+// Copies any real-valued array into int32 labels, refusing fractions and values out of range.
+struct CopyLabels
+{
+  std::int32_t* Out = nullptr;
+  std::string Error;
+
+  template <typename ArrayT>
+  void operator()(ArrayT* array)
+  {
+    constexpr double lowest = std::numeric_limits<std::int32_t>::min();
+    constexpr double highest = std::numeric_limits<std::int32_t>::max();
+    std::int64_t i = 0;
+    for (const auto value : vtk::DataArrayValueRange<1>(array))
+    {
+      const double v = static_cast<double>(value);
+      if (!(v >= lowest && v <= highest))
+      {
+        std::ostringstream msg;
+        msg << "the label array holds " << v << ", which is not a 32-bit integer label";
+        this->Error = msg.str();
+        return;
+      }
+      if (v != std::floor(v))
+      {
+        std::ostringstream msg;
+        msg << "the label array holds the non-integral value " << v
+            << "; a label map needs whole-number labels";
+        this->Error = msg.str();
+        return;
+      }
+      this->Out[i++] = static_cast<std::int32_t>(v);
+    }
+  }
+};
+} // namespace
+
+namespace vtkCBC3DConvert
+{
+bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
+  const std::vector<int>& backgroundLabels, cbc3d::LabelImage& out, std::string& error)
+{
+  if (!image)
+  {
+    error = "no input image";
+    return false;
+  }
+  if (!labels)
+  {
+    error = "the input image has no label array (no point scalars, or the chosen array is missing)";
+    return false;
+  }
+  const std::string name = labels->GetName() ? labels->GetName() : "(unnamed)";
+  if (labels->GetNumberOfComponents() != 1)
+  {
+    std::ostringstream msg;
+    msg << "the label array '" << name << "' has " << labels->GetNumberOfComponents()
+        << " components; a label map has one";
+    error = msg.str();
+    return false;
+  }
+  if (labels->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    error = "the label array '" + name + "' is not point data with one value per voxel";
+    return false;
+  }
+  if (labels->GetDataType() == VTK_BIT)
+  {
+    error = "the label array '" + name + "' is a bit array; use an integer or float array";
+    return false;
+  }
+
+  int dims[3];
+  image->GetDimensions(dims);
+  int extent[6];
+  image->GetExtent(extent);
+  out.Dimensions = { dims[0], dims[1], dims[2] };
+  double origin[3];
+  image->TransformContinuousIndexToPhysicalPoint(extent[0], extent[2], extent[4], origin);
+  out.Origin = Eigen::Vector3d(origin[0], origin[1], origin[2]);
+  const double* spacing = image->GetSpacing();
+  out.Spacing = Eigen::Vector3d(spacing[0], spacing[1], spacing[2]);
+  vtkMatrix3x3* direction = image->GetDirectionMatrix();
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      out.Direction(r, c) = direction->GetElement(r, c);
+    }
+  }
+  out.BackgroundLabels.assign(backgroundLabels.begin(), backgroundLabels.end());
+
+  out.Labels.resize(labels->GetNumberOfTuples());
+  CopyLabels copy;
+  copy.Out = out.Labels.data();
+  if (!vtkArrayDispatch::Dispatch::Execute(labels, copy))
+  {
+    copy(labels); // arrays the dispatcher does not know, through the generic API
+  }
+  if (!copy.Error.empty())
+  {
+    error = copy.Error;
+    return false;
+  }
+  const cbc3d::Status valid = cbc3d::ValidateLabelImage(out);
+  if (!valid.IsOk())
+  {
+    error = valid.GetMessage();
+    return false;
+  }
+  return true;
+}
+
+void ToUnstructuredGrid(const cbc3d::TetMesh& mesh, vtkUnstructuredGrid* out)
+{
+  const vtkIdType pointCount = static_cast<vtkIdType>(mesh.Points.size());
+  const vtkIdType tetCount = static_cast<vtkIdType>(mesh.Tets.size());
+
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(pointCount);
+  for (vtkIdType i = 0; i < pointCount; ++i)
+  {
+    points->SetPoint(i, mesh.Points[i].data());
+  }
+
+  vtkNew<vtkIdTypeArray> offsets;
+  offsets->SetNumberOfValues(tetCount + 1);
+  vtkNew<vtkIdTypeArray> connectivity;
+  connectivity->SetNumberOfValues(4 * tetCount);
+  vtkNew<vtkIntArray> labels;
+  labels->SetName(vtkCBC3DArrayNames::Label);
+  labels->SetNumberOfValues(tetCount);
+  for (vtkIdType t = 0; t < tetCount; ++t)
+  {
+    offsets->SetValue(t, 4 * t);
+    for (int v = 0; v < 4; ++v)
+    {
+      connectivity->SetValue(4 * t + v, mesh.Tets[t][v]);
+    }
+    labels->SetValue(t, mesh.Labels[t]);
+  }
+  offsets->SetValue(tetCount, 4 * tetCount);
+
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  out->Initialize();
+  out->SetPoints(points);
+  out->SetCells(VTK_TETRA, cells);
+  out->GetCellData()->AddArray(labels);
+  out->GetCellData()->SetActiveScalars(vtkCBC3DArrayNames::Label);
+}
+
+cbc3d::Progress MakeProgress(vtkAlgorithm* algorithm)
+{
+  return [algorithm](double fraction) {
+    algorithm->UpdateProgress(fraction);
+    return !algorithm->CheckAbort();
+  };
+}
+} // namespace vtkCBC3DConvert

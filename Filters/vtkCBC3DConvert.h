@@ -1,0 +1,41 @@
+/**
+ * @file vtkCBC3DConvert.h
+ * @brief The only translation between VTK data and the VTK-free cbc3d core (private).
+ *
+ * Every CBC3D filter reads its label image through ToLabelImage, so all filters accept and
+ * reject the same inputs with the same messages.
+ */
+#ifndef vtkCBC3DConvert_h
+#define vtkCBC3DConvert_h
+
+#include "cbc3d/LabelImage.h"
+#include "cbc3d/Progress.h"
+#include "cbc3d/TetMesh.h"
+
+#include <string>
+#include <vector>
+
+class vtkAlgorithm;
+class vtkDataArray;
+class vtkImageData;
+class vtkUnstructuredGrid;
+
+namespace vtkCBC3DConvert
+{
+/**
+ * Copies a label image into the core's frame and label storage. The array must be point data
+ * with one component, of an integer type or a float type whose values are all integers, and
+ * every value must fit in 32 bits. Returns false with a one-line message otherwise, or when the
+ * image is not 3-D or holds no tissue.
+ */
+bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
+  const std::vector<int>& backgroundLabels, cbc3d::LabelImage& out, std::string& error);
+
+/// Fills `out` with the mesh's points, VTK_TETRA cells and the `Label` cell array.
+void ToUnstructuredGrid(const cbc3d::TetMesh& mesh, vtkUnstructuredGrid* out);
+
+/// A core progress callback that drives the algorithm's progress and reports its abort flag.
+cbc3d::Progress MakeProgress(vtkAlgorithm* algorithm);
+} // namespace vtkCBC3DConvert
+
+#endif
