@@ -1,10 +1,14 @@
 #include "vtkCBC3DBCCLattice.h"
 
+#include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DConvert.h"
 
 #include "cbc3d/BCCLattice.h"
 
 #include <vtkDataObject.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkNew.h>
 #include <vtkDataSetAttributes.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
@@ -95,6 +99,10 @@ int vtkCBC3DBCCLattice::RequestData(
     return 0;
   }
   vtkCBC3DConvert::ToUnstructuredGrid(mesh, output);
+  vtkNew<vtkDoubleArray> edge;
+  edge->SetName(vtkCBC3DArrayNames::LatticeEdgeLength);
+  edge->InsertNextValue(params.EdgeLength > 0 ? params.EdgeLength : cbc3d::DefaultLatticeEdgeLength(image));
+  output->GetFieldData()->AddArray(edge);
   return 1;
 }
 

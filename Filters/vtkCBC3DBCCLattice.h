@@ -18,7 +18,8 @@
  * convention even when the direction matrix is a reflection.
  *
  * Output cell data: `Label` (vtkIntArray), each tet's majority tissue label, with the image's
- * label values unchanged.
+ * label values unchanged. Field data: `LatticeEdgeLength` (vtkDoubleArray, mm), the cube edge
+ * used.
  *
  * @warning Bad input (no label array, several components, fractional values, a 2-D image, no
  * tissue, a non-positive or memory-exhausting EdgeLength) is reported with vtkErrorMacro and

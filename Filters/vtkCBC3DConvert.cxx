@@ -7,11 +7,13 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDataArrayRange.h>
+#include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
 #include <vtkIntArray.h>
 #include <vtkMatrix3x3.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkUnstructuredGrid.h>
 
@@ -70,7 +72,15 @@ bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   }
   if (!labels)
   {
-    error = "the input image has no label array (no point scalars, or the chosen array is missing)";
+    std::string names;
+    vtkPointData* pointData = image->GetPointData();
+    for (int a = 0; a < pointData->GetNumberOfArrays(); ++a)
+    {
+      const char* name = pointData->GetArrayName(a);
+      names += std::string(names.empty() ? "" : ", ") + (name ? name : "(unnamed)");
+    }
+    error = "the input image has no label array (no active point scalars, or the chosen array "
+            "is missing); its point arrays: " + (names.empty() ? std::string("none") : names);
     return false;
   }
   const std::string name = labels->GetName() ? labels->GetName() : "(unnamed)";
@@ -172,6 +182,46 @@ void ToUnstructuredGrid(const cbc3d::TetMesh& mesh, vtkUnstructuredGrid* out)
   out->SetCells(VTK_TETRA, cells);
   out->GetCellData()->AddArray(labels);
   out->GetCellData()->SetActiveScalars(vtkCBC3DArrayNames::Label);
+}
+
+bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, cbc3d::TetMesh& out, std::string& error)
+{
+  out = cbc3d::TetMesh();
+  if (!grid)
+  {
+    error = "no input mesh";
+    return false;
+  }
+  vtkDataArray* labels = grid->GetCellData()->GetArray(vtkCBC3DArrayNames::Label);
+  const vtkIdType cellCount = grid->GetNumberOfCells();
+  if (!labels || labels->GetNumberOfComponents() != 1 || labels->GetNumberOfTuples() != cellCount)
+  {
+    error = "the mesh has no one-component 'Label' cell array";
+    return false;
+  }
+  out.Points.resize(grid->GetNumberOfPoints());
+  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
+  {
+    grid->GetPoint(i, out.Points[i].data());
+  }
+  out.Tets.resize(cellCount);
+  out.Labels.resize(cellCount);
+  vtkNew<vtkIdList> ids;
+  for (vtkIdType c = 0; c < cellCount; ++c)
+  {
+    if (grid->GetCellType(c) != VTK_TETRA)
+    {
+      error = "the mesh has a cell that is not a tetrahedron (cell " + std::to_string(c) + ")";
+      return false;
+    }
+    grid->GetCellPoints(c, ids);
+    for (int v = 0; v < 4; ++v)
+    {
+      out.Tets[c][v] = ids->GetId(v);
+    }
+    out.Labels[c] = static_cast<std::int32_t>(labels->GetTuple1(c));
+  }
+  return true;
 }
 
 cbc3d::Progress MakeProgress(vtkAlgorithm* algorithm)

@@ -31,6 +31,12 @@ namespace vtkCBC3DConvert
 bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   const std::vector<int>& backgroundLabels, cbc3d::LabelImage& out, std::string& error);
 
+/**
+ * Copies a tetrahedral grid with a `Label` cell array into the core mesh. Returns false with a
+ * one-line message when a cell is not a VTK_TETRA or the Label array is missing.
+ */
+bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, cbc3d::TetMesh& out, std::string& error);
+
 /// Fills `out` with the mesh's points, VTK_TETRA cells and the `Label` cell array.
 void ToUnstructuredGrid(const cbc3d::TetMesh& mesh, vtkUnstructuredGrid* out);
 

@@ -1,1 +1,224 @@
+#include "CommandLine.h"
 
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace
+{
+bool ParseDouble(const std::string& text, double& value)
+{
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return !text.empty() && end && *end == '\0' && std::isfinite(value);
+}
+
+bool ParseInt(const std::string& text, int& value)
+{
+  char* end = nullptr;
+  const long parsed = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || !end || *end != '\0' || parsed < -2147483647L - 1 || parsed > 2147483647L)
+  {
+    return false;
+  }
+  value = static_cast<int>(parsed);
+  return true;
+}
+} // namespace
+
+std::string UsageText()
+{
+  return R"(usage: cbc3d INPUT -o OUTPUT [--bcc-size MM] [--fidelity F]
+             [--pattern vertex|edge|face|none] [--iterations N] [--background L]...
+             [--threads N] [--report REPORT.json] [--quiet]
+
+Mesh a 3-D label image into a conforming multi-tissue tetrahedral mesh (CBC3D).
+
+  INPUT               label image: .nii .nii.gz .nrrd .nhdr .mha .mhd .vti
+                      (NIfTI is placed in its world frame: sform, else qform, RAS mm)
+  -o, --output FILE   mesh: .vtu (VTK XML, binary) or .vtk (legacy 4.2, binary);
+                      written whole or not at all
+  --bcc-size MM       lattice cube edge in mm (default: 8 x the finest voxel spacing)
+  --fidelity F        voxel fidelity target in [0, 1] for refinement (default 0.95;
+                      0 = no refinement)
+  --pattern P         target-point pattern for deformation: vertex, edge, face, none
+                      (default edge)
+  --iterations N      deformation iterations (default 5; 0 = no deformation)
+  --background L      a label that is not tissue; repeat for several (default 0)
+  --threads N         threads (default 0 = all cores)
+  --report FILE       write the figures as JSON
+  --quiet             print nothing but errors
+  -h, --help          this text
+  --version           the version
+
+The BCC lattice alone: cbc3d IN -o OUT --fidelity 0 --iterations 0
+)";
+}
+
+std::string FileExtension(const std::string& path)
+{
+  const std::size_t slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  std::transform(name.begin(), name.end(), name.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::size_t dot = name.find_last_of('.');
+  if (dot == std::string::npos || dot == 0)
+  {
+    return "";
+  }
+  std::string extension = name.substr(dot);
+  if (extension == ".gz")
+  {
+    const std::size_t inner = name.find_last_of('.', dot - 1);
+    if (inner != std::string::npos && inner != 0)
+    {
+      extension = name.substr(inner);
+    }
+  }
+  return extension;
+}
+
+bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::string& error)
+{
+  bool backgroundGiven = false;
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    auto value = [&](std::string& out) {
+      if (i + 1 >= argc)
+      {
+        error = "option " + arg + " needs a value";
+        return false;
+      }
+      out = argv[++i];
+      return true;
+    };
+    std::string text;
+    if (arg == "-h" || arg == "--help")
+    {
+      options.ShowHelp = true;
+    }
+    else if (arg == "--version")
+    {
+      options.ShowVersion = true;
+    }
+    else if (arg == "--quiet" || arg == "-q")
+    {
+      options.Quiet = true;
+    }
+    else if (arg == "-o" || arg == "--output")
+    {
+      if (!value(options.Output))
+        return false;
+    }
+    else if (arg == "--report")
+    {
+      if (!value(options.ReportPath))
+        return false;
+    }
+    else if (arg == "--bcc-size")
+    {
+      if (!value(text))
+        return false;
+      if (!ParseDouble(text, options.BCCSize) || !(options.BCCSize > 0.0))
+      {
+        error = "--bcc-size must be a positive number of millimetres, not '" + text + "'";
+        return false;
+      }
+    }
+    else if (arg == "--fidelity")
+    {
+      if (!value(text))
+        return false;
+      if (!ParseDouble(text, options.Fidelity) || options.Fidelity < 0.0 || options.Fidelity > 1.0)
+      {
+        error = "--fidelity must be a number from 0 to 1, not '" + text + "'";
+        return false;
+      }
+    }
+    else if (arg == "--pattern")
+    {
+      if (!value(options.Pattern))
+        return false;
+      if (options.Pattern != "vertex" && options.Pattern != "edge" && options.Pattern != "face" &&
+        options.Pattern != "none")
+      {
+        error = "--pattern must be vertex, edge, face or none, not '" + options.Pattern + "'";
+        return false;
+      }
+    }
+    else if (arg == "--iterations")
+    {
+      if (!value(text))
+        return false;
+      if (!ParseInt(text, options.Iterations) || options.Iterations < 0)
+      {
+        error = "--iterations must be a whole number of at least 0, not '" + text + "'";
+        return false;
+      }
+    }
+    else if (arg == "--background")
+    {
+      if (!value(text))
+        return false;
+      int label = 0;
+      if (!ParseInt(text, label))
+      {
+        error = "--background must be an integer label, not '" + text + "'";
+        return false;
+      }
+      if (!backgroundGiven)
+      {
+        options.BackgroundLabels.clear(); // the first --background replaces the default 0
+        backgroundGiven = true;
+      }
+      options.BackgroundLabels.push_back(label);
+    }
+    else if (arg == "--threads")
+    {
+      if (!value(text))
+        return false;
+      if (!ParseInt(text, options.Threads) || options.Threads < 0)
+      {
+        error = "--threads must be a whole number of at least 0, not '" + text + "'";
+        return false;
+      }
+    }
+    else if (arg.size() > 1 && arg[0] == '-')
+    {
+      error = "unknown option '" + arg + "' (see cbc3d --help)";
+      return false;
+    }
+    else
+    {
+      positional.push_back(arg);
+    }
+  }
+  if (options.ShowHelp || options.ShowVersion)
+  {
+    return true;
+  }
+  if (positional.size() != 1)
+  {
+    error = positional.empty() ? "no input image given (see cbc3d --help)"
+                               : "more than one input given: '" + positional[1] + "'";
+    return false;
+  }
+  options.Input = positional[0];
+  if (options.Output.empty())
+  {
+    error = "no output file given: add -o OUTPUT.vtu";
+    return false;
+  }
+  const std::string outExt = FileExtension(options.Output);
+  if (outExt != ".vtu" && outExt != ".vtk")
+  {
+    error = "unknown output extension '" + outExt + "' for '" + options.Output +
+      "': use .vtu or .vtk";
+    return false;
+  }
+  return true;
+}

@@ -1,1 +1,104 @@
+#include "MeshFileWriter.h"
 
+#include "CommandLine.h"
+#include "ErrorCapture.h"
+
+#include <vtkNew.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkUnstructuredGridWriter.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <unistd.h>
+
+namespace
+{
+// Runs `write` on a temporary file beside `path` and renames it into place on success.
+bool WriteAtomically(const std::string& path, std::string& error,
+  const std::function<bool(const std::string&, std::string&)>& write)
+{
+  const std::string temporary = path + ".part-" + std::to_string(getpid());
+  if (!write(temporary, error))
+  {
+    std::remove(temporary.c_str());
+    return false;
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0)
+  {
+    error = "cannot write '" + path + "': " + std::strerror(errno);
+    std::remove(temporary.c_str());
+    return false;
+  }
+  return true;
+}
+
+bool CanCreate(const std::string& path, std::string& error)
+{
+  std::ofstream probe(path, std::ios::binary);
+  if (!probe)
+  {
+    error = std::strerror(errno);
+    return false;
+  }
+  return true;
+}
+} // namespace
+
+bool WriteMeshFile(vtkUnstructuredGrid* mesh, const std::string& path, std::string& error)
+{
+  return WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
+    if (!CanCreate(temporary, message))
+    {
+      message = "cannot write '" + path + "': " + message;
+      return false;
+    }
+    vtkNew<ErrorCapture> capture;
+    int ok = 0;
+    if (FileExtension(path) == ".vtk")
+    {
+      vtkNew<vtkUnstructuredGridWriter> writer;
+      capture->Observe(writer);
+      writer->SetInputData(mesh);
+      writer->SetFileName(temporary.c_str());
+      writer->SetFileTypeToBinary();
+      writer->SetFileVersion(vtkUnstructuredGridWriter::VTK_LEGACY_READER_VERSION_4_2);
+      ok = writer->Write();
+    }
+    else
+    {
+      // Inline binary, never the default appended mode: VTK 9.2's XML reader cannot read
+      // appended files over ~4 KB with Debian 12's libexpat (VTK issue 19258).
+      vtkNew<vtkXMLUnstructuredGridWriter> writer;
+      capture->Observe(writer);
+      writer->SetInputData(mesh);
+      writer->SetFileName(temporary.c_str());
+      writer->SetDataModeToBinary();
+      writer->SetCompressorTypeToZLib();
+      ok = writer->Write();
+    }
+    if (!ok || !capture->Error.empty())
+    {
+      message = "cannot write '" + path + "'" +
+        (capture->Error.empty() ? std::string() : ": " + capture->Error);
+      return false;
+    }
+    return true;
+  });
+}
+
+bool WriteTextFile(const std::string& text, const std::string& path, std::string& error)
+{
+  return WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
+    std::ofstream out(temporary, std::ios::binary);
+    if (!out || !(out << text) || !(out.flush()))
+    {
+      message = "cannot write '" + path + "': " + std::strerror(errno);
+      return false;
+    }
+    return true;
+  });
+}

@@ -1,1 +1,185 @@
-int main() { return 0; }
+// cbc3d: the command-line mesher. Reads a label image, runs the CBC3D stages, measures the
+// mesh with vtkCBC3DMeshQuality, and writes the mesh (and a JSON report) all or nothing.
+#include "CommandLine.h"
+#include "ErrorCapture.h"
+#include "ImageFileReader.h"
+#include "MeshFileWriter.h"
+#include "Report.h"
+
+#include "vtkCBC3DArrayNames.h"
+#include "vtkCBC3DBCCLattice.h"
+#include "vtkCBC3DMeshQuality.h"
+
+#include <vtkAlgorithm.h>
+#include <vtkCallbackCommand.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkNew.h>
+#include <vtkStringOutputWindow.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <unistd.h>
+
+namespace
+{
+int Fail(const std::string& message, int code = 1)
+{
+  std::cerr << "cbc3d: error: " << message << std::endl;
+  return code;
+}
+
+// Shows "stage  NN%" on a terminal; silent when stderr is not one.
+struct ProgressLine
+{
+  std::string Stage;
+  int LastPercent = -1;
+
+  static void Callback(vtkObject* caller, unsigned long, void* clientData, void*)
+  {
+    auto* self = static_cast<ProgressLine*>(clientData);
+    const int percent = static_cast<int>(100.0 * static_cast<vtkAlgorithm*>(caller)->GetProgress());
+    if (percent != self->LastPercent)
+    {
+      self->LastPercent = percent;
+      std::fprintf(stderr, "\r  %-10s %3d%%", self->Stage.c_str(), percent);
+      std::fflush(stderr);
+    }
+  }
+};
+
+class Stopwatch
+{
+public:
+  double Seconds() const
+  {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - this->Start).count();
+  }
+
+private:
+  std::chrono::steady_clock::time_point Start = std::chrono::steady_clock::now();
+};
+
+// Runs one stage: progress on a terminal, errors caught as one line, time recorded.
+bool RunStage(vtkAlgorithm* stage, const std::string& name, bool showProgress, RunReport& report,
+  std::string& error)
+{
+  vtkNew<ErrorCapture> capture;
+  capture->Observe(stage);
+  ProgressLine line{ name };
+  vtkNew<vtkCallbackCommand> progress;
+  progress->SetCallback(&ProgressLine::Callback);
+  progress->SetClientData(&line);
+  if (showProgress)
+  {
+    stage->AddObserver(vtkCommand::ProgressEvent, progress);
+  }
+  Stopwatch clock;
+  stage->Update();
+  report.Seconds.emplace_back(name, clock.Seconds());
+  if (showProgress)
+  {
+    std::fprintf(stderr, "\r%40s\r", "");
+    stage->RemoveObserver(progress);
+  }
+  if (!capture->Error.empty())
+  {
+    error = capture->Error;
+    return false;
+  }
+  return true;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  CommandLineOptions options;
+  std::string error;
+  if (!ParseCommandLine(argc, argv, options, error))
+  {
+    return Fail(error, 2);
+  }
+  if (options.ShowHelp)
+  {
+    std::cout << UsageText();
+    return 0;
+  }
+  if (options.ShowVersion)
+  {
+    std::cout << "cbc3d " << CBC3D_VERSION << std::endl;
+    return 0;
+  }
+  // Messages from objects nobody observes (pipeline executives) are kept off the terminal:
+  // every error the user needs arrives through an ErrorCapture as one line.
+  vtkNew<vtkStringOutputWindow> silentWindow;
+  vtkOutputWindow::SetInstance(silentWindow);
+
+  const bool showProgress = !options.Quiet && isatty(fileno(stderr));
+  RunReport report;
+  report.Options = options;
+  Stopwatch total;
+
+  Stopwatch readClock;
+  vtkSmartPointer<vtkImageData> image = ReadImageFile(options.Input, error);
+  if (!image)
+  {
+    return Fail(error);
+  }
+  report.Seconds.emplace_back("read", readClock.Seconds());
+
+  vtkNew<vtkCBC3DBCCLattice> lattice;
+  lattice->SetInputData(image);
+  lattice->SetEdgeLength(options.BCCSize);
+  lattice->RemoveAllBackgroundLabels();
+  for (const int label : options.BackgroundLabels)
+  {
+    lattice->AddBackgroundLabel(label);
+  }
+  lattice->SetNumberOfThreads(options.Threads);
+  if (!RunStage(lattice, "lattice", showProgress, report, error))
+  {
+    return Fail(error);
+  }
+  if (!options.Quiet && (options.Fidelity > 0.0 || options.Iterations > 0))
+  {
+    std::cerr << "cbc3d: note: refinement (--fidelity) and deformation (--iterations) are not "
+                 "implemented yet; the mesh is the BCC lattice"
+              << std::endl;
+  }
+  vtkDataArray* edge =
+    lattice->GetOutput()->GetFieldData()->GetArray(vtkCBC3DArrayNames::LatticeEdgeLength);
+  report.BCCSizeUsed = edge ? edge->GetTuple1(0) : options.BCCSize;
+
+  vtkNew<vtkCBC3DMeshQuality> quality;
+  quality->SetInputConnection(lattice->GetOutputPort());
+  quality->SetNumberOfThreads(options.Threads);
+  if (!RunStage(quality, "quality", showProgress, report, error))
+  {
+    return Fail(error);
+  }
+  vtkUnstructuredGrid* mesh = quality->GetOutput();
+  if (!CollectQuality(mesh, report))
+  {
+    return Fail("the quality filter produced no figures");
+  }
+
+  Stopwatch writeClock;
+  if (!WriteMeshFile(mesh, options.Output, error))
+  {
+    return Fail(error);
+  }
+  report.Seconds.emplace_back("write", writeClock.Seconds());
+  report.Seconds.emplace_back("total", total.Seconds());
+
+  if (!options.ReportPath.empty() && !WriteTextFile(FormatJson(report), options.ReportPath, error))
+  {
+    return Fail(error);
+  }
+  if (!options.Quiet)
+  {
+    std::cout << FormatSummary(report) << std::flush;
+  }
+  return 0;
+}

@@ -16,11 +16,17 @@ void DihedralSummary::Merge(const DihedralSummary& other)
   this->Inverted += other.Inverted;
 }
 
-QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads)
+QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads,
+  TetDihedralExtremes* perTet)
 {
   const int threads = ThreadCount(numberOfThreads);
   std::vector<std::map<std::int32_t, DihedralSummary>> perThread(threads);
   const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
+  if (perTet)
+  {
+    perTet->MinDegrees.resize(count);
+    perTet->MaxDegrees.resize(count);
+  }
 #pragma omp parallel num_threads(threads)
   {
     auto& local = perThread[ThreadId()];
@@ -37,6 +43,11 @@ QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads)
       one.MaxDegrees = *hi * RadiansToDegrees;
       one.Inverted = SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) > 0.0 ? 0 : 1;
       local[mesh.Labels[t]].Merge(one);
+      if (perTet)
+      {
+        perTet->MinDegrees[t] = one.MinDegrees;
+        perTet->MaxDegrees[t] = one.MaxDegrees;
+      }
     }
   }
   QualitySummary summary;

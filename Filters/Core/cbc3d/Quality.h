@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <vector>
 
 namespace cbc3d
 {
@@ -26,9 +27,17 @@ struct QualitySummary
   std::map<std::int32_t, DihedralSummary> Tissues; // keyed by label value
 };
 
-/// Minimum and maximum dihedral angle and inverted-tet count, overall and per tissue.
-/// Deterministic for any thread count (min/max/count reductions are exact).
-QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads = 0);
+/// Per-tet extremes, in degrees, indexed like mesh.Tets.
+struct TetDihedralExtremes
+{
+  std::vector<double> MinDegrees;
+  std::vector<double> MaxDegrees;
+};
+
+/// Minimum and maximum dihedral angle and inverted-tet count, overall and per tissue; fills
+/// `perTet` when given. Deterministic for any thread count (min/max/count are exact).
+QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads = 0,
+  TetDihedralExtremes* perTet = nullptr);
 } // namespace cbc3d
 
 #endif

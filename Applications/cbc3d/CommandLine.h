@@ -1,0 +1,33 @@
+#ifndef cbc3d_CommandLine_h
+#define cbc3d_CommandLine_h
+
+#include <string>
+#include <vector>
+
+/// The options of the cbc3d command (a fixed interface: scripts depend on it).
+struct CommandLineOptions
+{
+  std::string Input;
+  std::string Output;
+  double BCCSize = 0.0;    // mm; 0 = 8 x the finest voxel spacing
+  double Fidelity = 0.95;  // 0 = no refinement
+  std::string Pattern = "edge";
+  int Iterations = 5;      // 0 = no deformation
+  std::vector<int> BackgroundLabels = { 0 };
+  int Threads = 0;         // 0 = all cores
+  std::string ReportPath;
+  bool Quiet = false;
+  bool ShowHelp = false;
+  bool ShowVersion = false;
+};
+
+/// Parses argv; false with a one-line message on any unknown option or bad value.
+bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::string& error);
+
+/// The --help text.
+std::string UsageText();
+
+/// The lower-cased file-name extension with its dot, e.g. ".nii.gz", ".vtu"; "" if none.
+std::string FileExtension(const std::string& path);
+
+#endif

@@ -1,0 +1,15 @@
+#ifndef cbc3d_MeshFileWriter_h
+#define cbc3d_MeshFileWriter_h
+
+#include <string>
+
+class vtkUnstructuredGrid;
+
+/// Writes .vtu (VTK XML, inline binary, zlib) or .vtk (legacy 4.2, binary). The file appears
+/// whole or not at all: it is written under a temporary name in the same folder, then renamed.
+bool WriteMeshFile(vtkUnstructuredGrid* mesh, const std::string& path, std::string& error);
+
+/// Writes text the same all-or-nothing way.
+bool WriteTextFile(const std::string& text, const std::string& path, std::string& error);
+
+#endif

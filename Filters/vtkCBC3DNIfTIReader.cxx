@@ -1,0 +1,310 @@
+#include "vtkCBC3DNIfTIReader.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkDataObject.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkMatrix4x4.h>
+#include <vtkNew.h>
+#include <vtkNIFTIImageHeader.h>
+#include <vtkNIFTIImageReader.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <vtksys/SystemTools.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkCBC3DNIfTIReader);
+
+namespace
+{
+// Largest deviation of a matrix's 3x3 part M from orthonormality: max |M^T M - I|.
+double OrthonormalityError(vtkMatrix4x4* m)
+{
+  double error = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int b = 0; b < 3; ++b)
+    {
+      double dot = 0.0;
+      for (int r = 0; r < 3; ++r)
+      {
+        dot += m->GetElement(r, a) * m->GetElement(r, b);
+      }
+      error = std::max(error, std::fabs(dot - (a == b ? 1.0 : 0.0)));
+    }
+  }
+  return error;
+}
+
+// Messages that the inner reader (and its executive) reported during one pass.
+struct ReaderMessages
+{
+  std::vector<std::string> Errors;
+  std::vector<std::string> Warnings;
+  vtkAlgorithm* Owner = nullptr;
+};
+
+// Strip VTK's "ClassName (0x...): " prefix and trailing newlines from a message.
+std::string StripMessage(const char* text)
+{
+  std::string message = text ? text : "";
+  const std::string::size_type prefix = message.find("): ");
+  if (prefix != std::string::npos)
+  {
+    message = message.substr(prefix + 3);
+  }
+  while (!message.empty() && (message.back() == '\n' || message.back() == '\r'))
+  {
+    message.pop_back();
+  }
+  return message;
+}
+
+void CollectMessage(vtkObject*, unsigned long event, void* clientData, void* callData)
+{
+  ReaderMessages* messages = static_cast<ReaderMessages*>(clientData);
+  const std::string text = StripMessage(static_cast<const char*>(callData));
+  if (event == vtkCommand::ErrorEvent)
+  {
+    messages->Errors.push_back(text);
+  }
+  else if (event == vtkCommand::WarningEvent)
+  {
+    messages->Warnings.push_back(text);
+  }
+  else if (event == vtkCommand::ProgressEvent && messages->Owner && callData)
+  {
+    messages->Owner->UpdateProgress(*static_cast<double*>(callData));
+  }
+}
+} // namespace
+
+vtkCBC3DNIfTIReader::vtkCBC3DNIfTIReader()
+  : Reader(vtkNIFTIImageReader::New())
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+vtkCBC3DNIfTIReader::~vtkCBC3DNIfTIReader()
+{
+  this->SetFileName(nullptr);
+  this->Reader->Delete();
+}
+
+int vtkCBC3DNIfTIReader::CanReadFile(const char* filename)
+{
+  if (!filename || !vtksys::SystemTools::FileExists(filename, true))
+  {
+    return 0;
+  }
+  return this->Reader->CanReadFile(filename);
+}
+
+bool vtkCBC3DNIfTIReader::RunReader(bool data)
+{
+  ReaderMessages messages;
+  messages.Owner = data ? this : nullptr;
+  vtkNew<vtkCallbackCommand> callback;
+  callback->SetCallback(CollectMessage);
+  callback->SetClientData(&messages);
+  vtkExecutive* executive = this->Reader->GetExecutive();
+  const unsigned long readerErrors = this->Reader->AddObserver(vtkCommand::ErrorEvent, callback);
+  const unsigned long readerWarnings =
+    this->Reader->AddObserver(vtkCommand::WarningEvent, callback);
+  const unsigned long readerProgress =
+    this->Reader->AddObserver(vtkCommand::ProgressEvent, callback);
+  const unsigned long executiveErrors = executive->AddObserver(vtkCommand::ErrorEvent, callback);
+
+  vtkStreamingDemandDrivenPipeline* sddp =
+    vtkStreamingDemandDrivenPipeline::SafeDownCast(executive);
+  int ok = 0;
+  if (sddp)
+  {
+    ok = data ? sddp->UpdateWholeExtent() : sddp->UpdateInformation();
+  }
+
+  this->Reader->RemoveObserver(readerErrors);
+  this->Reader->RemoveObserver(readerWarnings);
+  this->Reader->RemoveObserver(readerProgress);
+  executive->RemoveObserver(executiveErrors);
+
+  for (const std::string& warning : messages.Warnings)
+  {
+    vtkWarningMacro(<< this->FileName << ": " << warning);
+  }
+  if (!ok || !messages.Errors.empty())
+  {
+    // The reader's own error comes first; the executive's "returned failure" adds nothing.
+    const std::string reason =
+      messages.Errors.empty() ? std::string("vtkNIFTIImageReader failed") : messages.Errors[0];
+    vtkErrorMacro(<< "Cannot read NIfTI file " << this->FileName << ": " << reason);
+    return false;
+  }
+  return true;
+}
+
+bool vtkCBC3DNIfTIReader::ComputeFrame()
+{
+  vtkMatrix4x4* sform = this->Reader->GetSFormMatrix(); // only when sform_code > 0
+  vtkMatrix4x4* qform = this->Reader->GetQFormMatrix(); // only when qform_code > 0
+  const double tolerance = 1e-4;
+
+  vtkMatrix4x4* frame = nullptr;
+  if (sform)
+  {
+    const double error = OrthonormalityError(sform);
+    if (error <= tolerance)
+    {
+      frame = sform;
+      this->FrameSource = "sform";
+    }
+    else if (qform)
+    {
+      vtkWarningMacro(<< this->FileName << ": the sform holds a shear or a scaling besides the "
+                      << "voxel size (deviation from orthonormal " << error
+                      << "); using the qform instead");
+      frame = qform;
+      this->FrameSource = "qform";
+    }
+    else
+    {
+      vtkErrorMacro(<< "Cannot place NIfTI file " << this->FileName
+                    << ": its sform holds a shear or a scaling besides the voxel size "
+                    << "(deviation from orthonormal " << error << ") and it has no qform");
+      return false;
+    }
+  }
+  else if (qform)
+  {
+    frame = qform;
+    this->FrameSource = "qform";
+  }
+  else
+  {
+    this->FrameSource = "voxel size";
+  }
+
+  this->Reader->GetDataSpacing(this->Spacing);
+  for (int r = 0; r < 3; ++r)
+  {
+    this->Origin[r] = frame ? frame->GetElement(r, 3) : 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Direction[3 * r + c] = frame ? frame->GetElement(r, c) : (r == c ? 1.0 : 0.0);
+    }
+  }
+  // A negative pixdim: keep the positions, make the spacing positive.
+  for (int c = 0; c < 3; ++c)
+  {
+    if (this->Spacing[c] < 0.0)
+    {
+      this->Spacing[c] = -this->Spacing[c];
+      for (int r = 0; r < 3; ++r)
+      {
+        this->Direction[3 * r + c] = -this->Direction[3 * r + c];
+      }
+    }
+  }
+  return true;
+}
+
+int vtkCBC3DNIfTIReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  this->FrameSource.clear();
+  if (!this->FileName || !*this->FileName)
+  {
+    vtkErrorMacro(<< "No NIfTI file name set");
+    return 0;
+  }
+  if (!vtksys::SystemTools::FileExists(this->FileName, true))
+  {
+    vtkErrorMacro(<< "Cannot read NIfTI file " << this->FileName << ": no such file");
+    return 0;
+  }
+  if (!this->Reader->CanReadFile(this->FileName))
+  {
+    vtkErrorMacro(<< "Cannot read " << this->FileName
+                  << ": not a NIfTI file (no NIfTI-1/2 or Analyze 7.5 header)");
+    return 0;
+  }
+
+  this->Reader->SetFileName(this->FileName);
+  if (!this->RunReader(false) || !this->ComputeFrame())
+  {
+    return 0;
+  }
+
+  vtkInformation* readerInfo = this->Reader->GetOutputInformation(0);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  int extent[6];
+  readerInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  outInfo->Set(vtkDataObject::SPACING(), this->Spacing, 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), this->Origin, 3);
+  outInfo->Set(vtkDataObject::DIRECTION(), this->Direction, 9);
+  vtkDataObject::SetPointDataActiveScalarInfo(
+    outInfo, this->Reader->GetDataScalarType(), this->Reader->GetNumberOfScalarComponents());
+  return 1;
+}
+
+int vtkCBC3DNIfTIReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  output->Initialize();
+  if (this->FrameSource.empty())
+  {
+    return 0; // RequestInformation failed and said why
+  }
+  if (!this->RunReader(true))
+  {
+    return 0;
+  }
+
+  vtkImageData* image = this->Reader->GetOutput();
+  vtkDataArray* scalars = image->GetPointData()->GetScalars();
+  if (!scalars)
+  {
+    vtkErrorMacro(<< "Cannot read NIfTI file " << this->FileName << ": no voxel values read");
+    return 0;
+  }
+  output->ShallowCopy(image);
+  output->SetSpacing(this->Spacing);
+  output->SetOrigin(this->Origin);
+  output->SetDirectionMatrix(this->Direction);
+  scalars = output->GetPointData()->GetScalars();
+  if (!scalars->GetName() || !*scalars->GetName())
+  {
+    scalars->SetName("Labels");
+  }
+  output->GetPointData()->SetActiveScalars(scalars->GetName());
+  return 1;
+}
+
+void vtkCBC3DNIfTIReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
+  os << indent << "FrameSource: " << (this->FrameSource.empty() ? "(none)" : this->FrameSource)
+     << "\n";
+  os << indent << "Origin: " << this->Origin[0] << " " << this->Origin[1] << " "
+     << this->Origin[2] << "\n";
+  os << indent << "Spacing: " << this->Spacing[0] << " " << this->Spacing[1] << " "
+     << this->Spacing[2] << "\n";
+  os << indent << "Direction:";
+  for (const double value : this->Direction)
+  {
+    os << " " << value;
+  }
+  os << "\n";
+}

@@ -1,0 +1,99 @@
+/**
+ * @class   vtkCBC3DNIfTIReader
+ * @brief   Read a NIfTI-1/2 image (.nii, .nii.gz) into its world frame (RAS millimetres).
+ *
+ * The voxels are read by VTK's vtkNIFTIImageReader; this class then places the image where the
+ * NIfTI header says it lies, by setting the output's origin, spacing and direction matrix so
+ * that vtkImageData::TransformIndexToPhysicalPoint gives every voxel's NIfTI world position
+ * (x = right, y = anterior, z = superior, in millimetres). The header's transforms are used in
+ * the order the NIfTI standard recommends:
+ *
+ * - "sform" when sform_code > 0 and the sform, with the voxel size divided out, is a rotation
+ *   or a reflection (orthonormal within 1e-4);
+ * - "qform" when sform_code is 0, or the sform holds a shear or a scaling (then with a
+ *   warning), and qform_code > 0;
+ * - "voxel size" when neither code is set: origin 0, identity direction, spacing pixdim.
+ *
+ * GetFrameSource() tells which rule was applied to the last file read. An sform that holds a
+ * shear or a scaling and no qform to fall back on is an error: such an image cannot be placed
+ * by origin, spacing and direction alone.
+ *
+ * Index order: vtkNIFTIImageReader reverses the slice order when the header's ijk axes are
+ * left-handed (qfac = -1 in pixdim[0], or an sform with a negative determinant and no qform),
+ * so the output's slice K holds the file's slice (dim[3] - 1 - K) there. The world position of
+ * every voxel is the header's either way. A reflection that survives this (an sform with a
+ * negative determinant beside a qform with qfac = +1) is kept as a direction matrix with
+ * determinant -1. A negative pixdim becomes a positive spacing and a negated direction column.
+ *
+ * Output point data: the file's scalar array, with its type and name as vtkNIFTIImageReader
+ * gives them ("NIFTI"; an unnamed array is named "Labels"), as the active scalars. Values are
+ * not rescaled by scl_slope/scl_inter. Only the first volume of a 4-D file is read.
+ *
+ * @warning A missing or unreadable file, or one that is not NIfTI, is reported with
+ * vtkErrorMacro (one line naming the file) and the request fails.
+ *
+ * @sa vtkNIFTIImageReader vtkCBC3DBCCLattice
+ */
+#ifndef vtkCBC3DNIfTIReader_h
+#define vtkCBC3DNIfTIReader_h
+
+#include "vtkCBC3DFiltersModule.h" // For export macro
+#include "vtkImageAlgorithm.h"
+
+#include <string> // For FrameSource
+
+class vtkNIFTIImageReader;
+
+class VTKCBC3DFILTERS_EXPORT vtkCBC3DNIfTIReader : public vtkImageAlgorithm
+{
+public:
+  static vtkCBC3DNIfTIReader* New();
+  vtkTypeMacro(vtkCBC3DNIfTIReader, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The file to read: .nii or .nii.gz (a .hdr/.img pair also works). Default: none.
+   */
+  vtkSetFilePathMacro(FileName);
+  vtkGetFilePathMacro(FileName);
+  ///@}
+
+  /**
+   * Whether the file is a NIfTI (or Analyze 7.5) file that vtkNIFTIImageReader can read.
+   */
+  int CanReadFile(VTK_FILEPATH const char* filename);
+
+  /**
+   * The rule that placed the last image read: "sform", "qform" or "voxel size"; "" before a
+   * successful RequestInformation.
+   */
+  const char* GetFrameSource() const { return this->FrameSource.c_str(); }
+
+protected:
+  vtkCBC3DNIfTIReader();
+  ~vtkCBC3DNIfTIReader() override;
+
+  int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  char* FileName = nullptr;
+  std::string FrameSource;
+  double Origin[3] = { 0.0, 0.0, 0.0 };
+  double Spacing[3] = { 1.0, 1.0, 1.0 };
+  double Direction[9] = { 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0 };
+  vtkNIFTIImageReader* Reader;
+
+private:
+  vtkCBC3DNIfTIReader(const vtkCBC3DNIfTIReader&) = delete;
+  void operator=(const vtkCBC3DNIfTIReader&) = delete;
+
+  // Run the inner reader's pass (information or data), turning its errors into one line of
+  // ours that names the file; warnings are passed on. False on failure.
+  bool RunReader(bool data);
+  bool ComputeFrame();
+};
+
+#endif

@@ -1,0 +1,67 @@
+#include "cbc3d/LabelImage.h"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+namespace
+{
+cbc3d::LabelImage Cube(int n, std::int32_t label)
+{
+  cbc3d::LabelImage image;
+  image.Dimensions = { n, n, n };
+  image.Labels.assign(static_cast<std::size_t>(n) * n * n, label);
+  return image;
+}
+} // namespace
+
+TEST(LabelImage, IndexAndWorldRoundTripWithReflectedDirection)
+{
+  cbc3d::LabelImage image = Cube(4, 1);
+  image.Origin = Eigen::Vector3d(10, -20, 5);
+  image.Spacing = Eigen::Vector3d(0.5, 1.0, 2.5);
+  // A rotation about z by 90 degrees, then x flipped: a reflection (det -1).
+  Eigen::Matrix3d rotation = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  image.Direction = Eigen::Vector3d(-1, 1, 1).asDiagonal() * rotation;
+  EXPECT_NEAR(image.Direction.determinant(), -1.0, 1e-12);
+
+  // Voxel (2,0,0) is 1 mm along the image's first axis: rotated to +y, not flipped.
+  const Eigen::Vector3d world = image.IndexToWorld(Eigen::Vector3d(2, 0, 0));
+  EXPECT_TRUE(world.isApprox(Eigen::Vector3d(10, -19, 5), 1e-12));
+  // Voxel (0,1,0): 1 mm along the second axis: rotated to -x, then flipped to +x.
+  EXPECT_TRUE(image.IndexToWorld(Eigen::Vector3d(0, 1, 0)).isApprox(Eigen::Vector3d(11, -20, 5), 1e-12));
+  const Eigen::Vector3d index(1.25, 2.5, 3.0);
+  EXPECT_TRUE(image.WorldToIndex(image.IndexToWorld(index)).isApprox(index, 1e-12));
+  EXPECT_TRUE(cbc3d::ValidateLabelImage(image).IsOk());
+}
+
+TEST(LabelImage, TissueLabelsSkipEveryBackgroundLabel)
+{
+  cbc3d::LabelImage image = Cube(3, 0);
+  image.Labels[0] = 1;
+  image.Labels[5] = 128;
+  image.Labels[7] = 5;
+  image.BackgroundLabels = { 0, 1 };
+  EXPECT_EQ(image.TissueLabels(), (std::vector<std::int32_t>{ 5, 128 }));
+  std::array<int, 3> lower, upper;
+  ASSERT_TRUE(cbc3d::TissueIndexBounds(image, lower, upper));
+  EXPECT_EQ(lower, (std::array<int, 3>{ 1, 1, 0 })); // voxels 5 = (2,1,0) and 7 = (1,2,0)
+  EXPECT_EQ(upper, (std::array<int, 3>{ 2, 2, 0 }));
+}
+
+TEST(LabelImage, ValidationNamesTheProblem)
+{
+  cbc3d::LabelImage flat = Cube(3, 1);
+  flat.Dimensions = { 9, 3, 1 };
+  EXPECT_NE(cbc3d::ValidateLabelImage(flat).GetMessage().find("3-D"), std::string::npos);
+
+  const cbc3d::LabelImage empty = Cube(3, 0);
+  EXPECT_NE(cbc3d::ValidateLabelImage(empty).GetMessage().find("no tissue"), std::string::npos);
+
+  cbc3d::LabelImage sheared = Cube(3, 1);
+  sheared.Direction(0, 1) = 0.3;
+  EXPECT_NE(cbc3d::ValidateLabelImage(sheared).GetMessage().find("orthonormal"), std::string::npos);
+
+  cbc3d::LabelImage negative = Cube(3, 1);
+  negative.Spacing[2] = -1.0;
+  EXPECT_NE(cbc3d::ValidateLabelImage(negative).GetMessage().find("spacing"), std::string::npos);
+}

@@ -1,0 +1,69 @@
+#include "cbc3d/TetGeometry.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using cbc3d::Vec3;
+
+namespace
+{
+double Degrees(double radians)
+{
+  return radians * cbc3d::RadiansToDegrees;
+}
+} // namespace
+
+TEST(TetGeometry, RegularTetHasSixAnglesOfArccosOneThird)
+{
+  const Vec3 p0(1, 1, 1), p1(1, -1, -1), p2(-1, 1, -1), p3(-1, -1, 1);
+  const double expected = Degrees(std::acos(1.0 / 3.0)); // 70.5288 degrees
+  EXPECT_NEAR(expected, 70.5288, 1e-4);
+  for (const double angle : cbc3d::DihedralAngles(p0, p1, p2, p3))
+  {
+    EXPECT_NEAR(Degrees(angle), expected, 1e-9);
+  }
+  // Edge length 2*sqrt(2): volume a^3 / (6 sqrt 2) = 8/3.
+  EXPECT_NEAR(std::abs(cbc3d::SignedVolume(p0, p1, p2, p3)), 8.0 / 3.0, 1e-12);
+}
+
+TEST(TetGeometry, BCCTetHasFourSixtyAndTwoNinetyDegreeAngles)
+{
+  // Two adjacent cube centres and one edge of the face they share.
+  const Vec3 c0(0.5, 0.5, 0.5), c1(1.5, 0.5, 0.5), q0(1, 0, 0), q1(1, 1, 0);
+  auto angles = cbc3d::DihedralAngles(c0, c1, q0, q1);
+  std::sort(angles.begin(), angles.end());
+  for (int i = 0; i < 4; ++i)
+  {
+    EXPECT_NEAR(Degrees(angles[i]), 60.0, 1e-9);
+  }
+  EXPECT_NEAR(Degrees(angles[4]), 90.0, 1e-9);
+  EXPECT_NEAR(Degrees(angles[5]), 90.0, 1e-9);
+}
+
+TEST(TetGeometry, UnitRightTetIsPositiveInVTKOrder)
+{
+  const Vec3 o(0, 0, 0), x(1, 0, 0), y(0, 1, 0), z(0, 0, 1);
+  EXPECT_NEAR(cbc3d::SignedVolume(o, x, y, z), 1.0 / 6.0, 1e-15);
+  EXPECT_NEAR(cbc3d::SignedVolume(o, y, x, z), -1.0 / 6.0, 1e-15);
+  // Right angles at the three edges through the origin, arccos(1/sqrt 3) at the others.
+  const auto angles = cbc3d::DihedralAngles(o, x, y, z); // edges 01 12 20 03 13 23
+  EXPECT_NEAR(Degrees(angles[0]), 90.0, 1e-9);
+  EXPECT_NEAR(Degrees(angles[2]), 90.0, 1e-9);
+  EXPECT_NEAR(Degrees(angles[3]), 90.0, 1e-9);
+  const double oblique = Degrees(std::acos(1.0 / std::sqrt(3.0)));
+  EXPECT_NEAR(Degrees(angles[1]), oblique, 1e-9);
+  EXPECT_NEAR(Degrees(angles[4]), oblique, 1e-9);
+  EXPECT_NEAR(Degrees(angles[5]), oblique, 1e-9);
+}
+
+TEST(TetGeometry, SliverAngleAtEdgeZeroTwoIsThreeDegrees)
+{
+  // The faces (0,2,1) and (0,2,3) meet at 3 degrees along edge 0-2 (the x axis).
+  const double a = 3.0 / cbc3d::RadiansToDegrees;
+  const Vec3 p0(0, 0, 0), p1(0.5, 1, 0), p2(1, 0, 0), p3(0.5, std::cos(a), std::sin(a));
+  const auto angles = cbc3d::DihedralAngles(p0, p1, p2, p3);
+  EXPECT_NEAR(Degrees(angles[2]), 3.0, 1e-9); // edge {2,0}
+  EXPECT_NEAR(Degrees(*std::min_element(angles.begin(), angles.end())), 3.0, 1e-9);
+}
