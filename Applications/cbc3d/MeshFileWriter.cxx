@@ -90,6 +90,18 @@ bool WriteMeshFile(vtkUnstructuredGrid* mesh, const std::string& path, std::stri
   });
 }
 
+bool CanWriteBeside(const std::string& path, std::string& error)
+{
+  const std::size_t slash = path.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? "." : path.substr(0, slash + 1);
+  if (access(folder.c_str(), W_OK) != 0)
+  {
+    error = "cannot write '" + path + "': " + std::strerror(errno);
+    return false;
+  }
+  return true;
+}
+
 bool WriteTextFile(const std::string& text, const std::string& path, std::string& error)
 {
   return WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {

@@ -9,6 +9,9 @@ class vtkUnstructuredGrid;
 /// whole or not at all: it is written under a temporary name in the same folder, then renamed.
 bool WriteMeshFile(vtkUnstructuredGrid* mesh, const std::string& path, std::string& error);
 
+/// Checks that the folder of `path` exists and is writable, with a one-line message if not.
+bool CanWriteBeside(const std::string& path, std::string& error);
+
 /// Writes text the same all-or-nothing way.
 bool WriteTextFile(const std::string& text, const std::string& path, std::string& error);
 

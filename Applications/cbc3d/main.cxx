@@ -14,6 +14,7 @@
 #include <vtkCallbackCommand.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkStringOutputWindow.h>
 #include <vtkUnstructuredGrid.h>
@@ -115,6 +116,13 @@ int main(int argc, char* argv[])
   // every error the user needs arrives through an ErrorCapture as one line.
   vtkNew<vtkStringOutputWindow> silentWindow;
   vtkOutputWindow::SetInstance(silentWindow);
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  // Find out now, not after a long run, that the output cannot be written.
+  if (!CanWriteBeside(options.Output, error) ||
+    (!options.ReportPath.empty() && !CanWriteBeside(options.ReportPath, error)))
+  {
+    return Fail(error);
+  }
 
   const bool showProgress = !options.Quiet && isatty(fileno(stderr));
   RunReport report;
@@ -141,12 +149,6 @@ int main(int argc, char* argv[])
   if (!RunStage(lattice, "lattice", showProgress, report, error))
   {
     return Fail(error);
-  }
-  if (!options.Quiet && (options.Fidelity > 0.0 || options.Iterations > 0))
-  {
-    std::cerr << "cbc3d: note: refinement (--fidelity) and deformation (--iterations) are not "
-                 "implemented yet; the mesh is the BCC lattice"
-              << std::endl;
   }
   vtkDataArray* edge =
     lattice->GetOutput()->GetFieldData()->GetArray(vtkCBC3DArrayNames::LatticeEdgeLength);
@@ -179,6 +181,12 @@ int main(int argc, char* argv[])
   }
   if (!options.Quiet)
   {
+    if (options.Fidelity > 0.0 || options.Iterations > 0)
+    {
+      std::cerr << "cbc3d: note: refinement (--fidelity) and deformation (--iterations) are not "
+                   "implemented yet; the mesh is the BCC lattice"
+                << std::endl;
+    }
     std::cout << FormatSummary(report) << std::flush;
   }
   return 0;

@@ -75,5 +75,23 @@ lattice.UpdatePipeline()
 text = str(lattice.GetClientSideObject())
 check("EdgeLength: 3.5" in text, "PrintSelf shows EdgeLength")
 
+# A NIfTI file opened the way a user opens it: the plugin's reader places it in its world frame
+# (an sform with a rotation), and the lattice lies inside the image's world bounds.
+nifti = OpenDataFile(os.path.join(source_dir, "Data", "shells.nii.gz"))
+check(nifti is not None and nifti.GetXMLName() == "CBC3DNIfTIReader", "OpenDataFile picks the CBC3D NIfTI reader")
+nifti.UpdatePipeline()
+world = nifti.GetDataInformation().GetBounds()
+shells = CBC3DBCCLattice(Input=nifti)
+shells.EdgeLength = 2.0
+shells.UpdatePipeline()
+mesh = servermanager.Fetch(shells)
+bounds = mesh.GetBounds()
+labels = mesh.GetCellData().GetArray("Label")
+check(mesh.GetNumberOfCells() > 500, "shells lattice has %d tets" % mesh.GetNumberOfCells())
+check(labels is not None and labels.GetRange() == (1.0, 3.0), "shells keep labels 1..3")
+for axis in range(3):
+    check(world[2 * axis] <= bounds[2 * axis] and bounds[2 * axis + 1] <= world[2 * axis + 1],
+          "shells mesh inside the image's world bounds on axis %d: %s in %s" % (axis, bounds, world))
+
 print("%d failed checks" % len(failures))
 sys.exit(1 if failures else 0)

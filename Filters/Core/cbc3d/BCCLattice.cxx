@@ -104,7 +104,7 @@ bool MakeFrame(const LabelImage& image, double h, LatticeFrame& frame)
 std::string FormatBytes(double bytes)
 {
   std::ostringstream out;
-  out << std::fixed << std::setprecision(1) << bytes / (1024.0 * 1024.0 * 1024.0) << " GiB";
+  out << std::setprecision(3) << bytes / (1024.0 * 1024.0 * 1024.0) << " GiB";
   return out.str();
 }
 } // namespace

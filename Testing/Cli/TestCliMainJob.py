@@ -1,0 +1,69 @@
+"""The main job on a bundled phantom: summary, JSON report, .vtu and .vtk outputs, --quiet."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+CLI = os.environ["CBC3D_CLI"]
+SOURCE = os.environ["CBC3D_SOURCE_DIR"]
+PHANTOM = os.path.join(SOURCE, "Data", "nested_shells.vti")
+failures = []
+
+
+def check(condition, message):
+    print(("ok   " if condition else "FAIL ") + message)
+    if not condition:
+        failures.append(message)
+
+
+def run(*args):
+    return subprocess.run([CLI] + list(args), capture_output=True, text=True, timeout=300)
+
+
+with tempfile.TemporaryDirectory() as work:
+    vtu = os.path.join(work, "shells.vtu")
+    report_path = os.path.join(work, "shells.json")
+    result = run(PHANTOM, "-o", vtu, "--bcc-size", "2", "--fidelity", "0", "--iterations", "0",
+                 "--report", report_path)
+    check(result.returncode == 0, "main job exits 0 (stderr: %r)" % result.stderr)
+    check(result.stderr == "", "lattice-only run prints nothing on stderr when not on a terminal")
+    report = json.load(open(report_path))
+    for key in ("tetrahedra", "points", "min_dihedral_deg", "max_dihedral_deg", "seconds", "tissues"):
+        check(key in report, "report has %s" % key)
+    check(report["tetrahedra"] > 0 and report["points"] > 0, "mesh is not empty")
+    check(abs(report["min_dihedral_deg"] - 60.0) < 0.01, "min dihedral 60 degrees")
+    check(abs(report["max_dihedral_deg"] - 90.0) < 0.01, "max dihedral 90 degrees")
+    check(sorted(report["tissues"]) == ["1", "2", "3"], "tissues keyed by label value 1 2 3")
+    check(sum(t["tetrahedra"] for t in report["tissues"].values()) == report["tetrahedra"],
+          "tissue tet counts add up")
+    check(report["parameters"]["bcc_size_mm"] == 2.0, "report records the lattice size")
+    check(all(k in report["seconds"] for k in ("read", "lattice", "total")), "seconds per stage")
+    # The summary on stdout gives the same figures as the report.
+    check("tetrahedra %d, points %d" % (report["tetrahedra"], report["points"]) in result.stdout,
+          "summary prints tets and points")
+    for label in ("1", "2", "3"):
+        check(any(line.split()[:1] == [label] for line in result.stdout.splitlines()),
+              "summary has a row for tissue " + label)
+    # Inline binary, never appended (VTK 9.2 cannot read appended files here).
+    text = open(vtu, "rb").read()
+    check(b'format="binary"' in text and b'format="appended"' not in text, ".vtu is inline binary")
+
+    vtk = os.path.join(work, "shells.vtk")
+    result = run(PHANTOM, "-o", vtk, "--bcc-size", "2", "--quiet")
+    check(result.returncode == 0 and result.stdout == "" and result.stderr == "",
+          "--quiet prints nothing (stdout %r, stderr %r)" % (result.stdout, result.stderr))
+    check(open(vtk, "rb").read(30).startswith(b"# vtk DataFile Version 4.2"), ".vtk is legacy 4.2")
+
+    # Default parameters: refinement and deformation are not there yet, and the run says so.
+    result = run(PHANTOM, "-o", os.path.join(work, "default.vtu"))
+    check(result.returncode == 0 and "not implemented yet" in result.stderr,
+          "default run notes the missing stages")
+    check("lattice size 8.000 mm" in result.stdout, "default lattice size is 8 x 1 mm")
+
+    result = run("--help")
+    check(result.returncode == 0 and "--bcc-size" in result.stdout, "--help")
+    check([f for f in os.listdir(work) if ".part-" in f] == [], "no temporary files left")
+
+print("%d failed" % len(failures))
+sys.exit(1 if failures else 0)
