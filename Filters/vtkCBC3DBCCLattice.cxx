@@ -75,8 +75,9 @@ int vtkCBC3DBCCLattice::RequestData(
 
   cbc3d::LabelImage image;
   std::string error;
-  if (!vtkCBC3DConvert::ToLabelImage(
-        input, this->GetInputArrayToProcess(0, inputVector), this->BackgroundLabels, image, error))
+  vtkDataArray* labels = vtkCBC3DConvert::ChooseLabelArray(
+    this->GetInputArrayToProcess(0, inputVector), this->GetInputArrayInformation(0), input);
+  if (!vtkCBC3DConvert::ToLabelImage(input, labels, this->BackgroundLabels, image, error))
   {
     vtkErrorMacro(<< error);
     return 0;

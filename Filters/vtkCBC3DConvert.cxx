@@ -10,6 +10,7 @@
 #include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
+#include <vtkInformation.h>
 #include <vtkIntArray.h>
 #include <vtkMatrix3x3.h>
 #include <vtkNew.h>
@@ -62,6 +63,28 @@ struct CopyLabels
 
 namespace vtkCBC3DConvert
 {
+vtkDataArray* ChooseLabelArray(
+  vtkDataArray* chosen, vtkInformation* arrayRequest, vtkImageData* image)
+{
+  if (chosen)
+  {
+    return chosen;
+  }
+  const char* name = arrayRequest && arrayRequest->Has(vtkDataObject::FIELD_NAME())
+    ? arrayRequest->Get(vtkDataObject::FIELD_NAME())
+    : nullptr;
+  if ((name && *name) || !image)
+  {
+    return nullptr;
+  }
+  vtkPointData* pointData = image->GetPointData();
+  if (vtkDataArray* scalars = pointData->GetScalars())
+  {
+    return scalars;
+  }
+  return pointData->GetNumberOfArrays() == 1 ? pointData->GetArray(0) : nullptr;
+}
+
 bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   const std::vector<int>& backgroundLabels, cbc3d::LabelImage& out, std::string& error)
 {
@@ -141,6 +164,7 @@ bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
     error = valid.GetMessage();
     return false;
   }
+  cbc3d::OrthonormalizeDirection(out);
   return true;
 }
 

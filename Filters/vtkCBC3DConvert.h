@@ -18,10 +18,21 @@
 class vtkAlgorithm;
 class vtkDataArray;
 class vtkImageData;
+class vtkInformation;
 class vtkUnstructuredGrid;
 
 namespace vtkCBC3DConvert
 {
+/**
+ * The label array an algorithm was asked for: `chosen` (GetInputArrayToProcess) as described by
+ * `arrayRequest` (GetInputArrayInformation). When no array name was chosen
+ * (ParaView sends an empty name while the input's arrays are not yet known), falls back to the
+ * active point scalars, then to the image's only point array. A name that was chosen but is
+ * missing gives null, never another array.
+ */
+vtkDataArray* ChooseLabelArray(
+  vtkDataArray* chosen, vtkInformation* arrayRequest, vtkImageData* image);
+
 /**
  * Copies a label image into the core's frame and label storage. The array must be point data
  * with one component, of an integer type or a float type whose values are all integers, and

@@ -79,11 +79,12 @@ check("EdgeLength: 3.5" in text, "PrintSelf shows EdgeLength")
 # (an sform with a rotation), and the lattice lies inside the image's world bounds.
 nifti = OpenDataFile(os.path.join(source_dir, "Data", "shells.nii.gz"))
 check(nifti is not None and nifti.GetXMLName() == "CBC3DNIfTIReader", "OpenDataFile picks the CBC3D NIfTI reader")
-nifti.UpdatePipeline()
-world = nifti.GetDataInformation().GetBounds()
+# Created before the reader has run, so ParaView knows no array yet: the filter falls back to
+# the image's active scalars.
 shells = CBC3DBCCLattice(Input=nifti)
 shells.EdgeLength = 2.0
 shells.UpdatePipeline()
+world = nifti.GetDataInformation().GetBounds()
 mesh = servermanager.Fetch(shells)
 bounds = mesh.GetBounds()
 labels = mesh.GetCellData().GetArray("Label")
@@ -92,6 +93,14 @@ check(labels is not None and labels.GetRange() == (1.0, 3.0), "shells keep label
 for axis in range(3):
     check(world[2 * axis] <= bounds[2 * axis] and bounds[2 * axis + 1] <= world[2 * axis + 1],
           "shells mesh inside the image's world bounds on axis %d: %s in %s" % (axis, bounds, world))
+
+# The quality proxy reports the BCC angles in its field data.
+quality = CBC3DMeshQuality(Input=shells)
+quality.UpdatePipeline()
+fields = servermanager.Fetch(quality).GetFieldData()
+check(abs(fields.GetArray("MinDihedralAngle").GetValue(0) - 60) < 1e-6, "quality proxy: min 60")
+check(abs(fields.GetArray("MaxDihedralAngle").GetValue(0) - 90) < 1e-6, "quality proxy: max 90")
+check([fields.GetArray("TissueLabel").GetValue(i) for i in range(3)] == [1, 2, 3], "quality proxy: tissues 1 2 3")
 
 print("%d failed checks" % len(failures))
 sys.exit(1 if failures else 0)

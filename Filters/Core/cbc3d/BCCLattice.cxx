@@ -168,6 +168,7 @@ Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, Tet
 #pragma omp parallel num_threads(ThreadCount(params.NumberOfThreads))
   {
     LabelCounts counts;
+    std::int64_t ownCubes = 0; // thread 0 reports after every `stride` cubes of its own
 #pragma omp for schedule(dynamic, 64)
     for (std::int64_t cube = 0; cube < cubes; ++cube)
     {
@@ -196,14 +197,15 @@ Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, Tet
         }
       }
       const std::int64_t finished = done.fetch_add(1, std::memory_order_relaxed) + 1;
-      if (progress && ThreadId() == 0 && finished % stride == 0 &&
+      if (progress && ThreadId() == 0 && ++ownCubes % stride == 0 &&
         !progress(0.95 * double(finished) / double(cubes)))
       {
         stop.store(true, std::memory_order_relaxed);
       }
     }
   }
-  if (stop.load())
+  // Thread 0 may have had no turn to report (a busy machine); ask once more before going on.
+  if (stop.load() || (progress && !progress(0.95)))
   {
     return Status::Aborted();
   }

@@ -1,6 +1,7 @@
 #include "cbc3d/LabelImage.h"
 
 #include <Eigen/LU>
+#include <Eigen/SVD>
 
 #include <algorithm>
 #include <cmath>
@@ -81,6 +82,13 @@ Status ValidateLabelImage(const LabelImage& image)
     return Status::Error("the image has no tissue: every voxel holds a background label");
   }
   return Status::Ok();
+}
+
+void OrthonormalizeDirection(LabelImage& image)
+{
+  const Eigen::JacobiSVD<Eigen::Matrix3d> svd(
+    image.Direction, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  image.Direction = svd.matrixU() * svd.matrixV().transpose();
 }
 
 bool TissueIndexBounds(const LabelImage& image, std::array<int, 3>& lower,

@@ -49,6 +49,10 @@ struct LabelImage
 /// positive spacing, an orthonormal direction, labels for every voxel, and one tissue voxel.
 Status ValidateLabelImage(const LabelImage& image);
 
+/// Replaces a nearly orthonormal direction (a file header stores it in float32) by the nearest
+/// orthonormal matrix, so lattice angles come out exact. Reflections stay reflections.
+void OrthonormalizeDirection(LabelImage& image);
+
 /// Index-space box of the tissue voxels (inclusive); false when the image has no tissue.
 bool TissueIndexBounds(const LabelImage& image, std::array<int, 3>& lower,
   std::array<int, 3>& upper);

@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace
 {
 cbc3d::LabelImage Cube(int n, std::int32_t label)
@@ -64,4 +66,15 @@ TEST(LabelImage, ValidationNamesTheProblem)
   cbc3d::LabelImage negative = Cube(3, 1);
   negative.Spacing[2] = -1.0;
   EXPECT_NE(cbc3d::ValidateLabelImage(negative).GetMessage().find("spacing"), std::string::npos);
+}
+
+TEST(LabelImage, OrthonormalizeKeepsAReflectionAndMakesItExact)
+{
+  cbc3d::LabelImage image = Cube(2, 1);
+  image.Direction << 0.0f, -1.0f, 0.0f, 0.70710677f, 0.0f, 0.70710677f, -0.70710677f, 0.0f, 0.70710677f;
+  image.Direction.col(0) *= -1.0; // a float32 header's reflection
+  cbc3d::OrthonormalizeDirection(image);
+  EXPECT_LT((image.Direction.transpose() * image.Direction - Eigen::Matrix3d::Identity()).norm(), 1e-15);
+  EXPECT_NEAR(image.Direction.determinant(), -1.0, 1e-15);
+  EXPECT_NEAR(image.Direction(1, 0), -std::sqrt(0.5), 1e-7);
 }

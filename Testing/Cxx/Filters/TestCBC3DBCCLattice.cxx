@@ -220,6 +220,18 @@ void TestInputs()
     vectors->Fill(1.0);
     image->GetPointData()->SetScalars(vectors);
     CHECK(RunExpectingError(image).find("components") != std::string::npos);
+    // A chosen array that is missing is an error, never a silent switch to another array.
+    image->GetPointData()->SetScalars(MakeBall<vtkIntArray>(1, identity)->GetPointData()->GetScalars());
+    {
+      vtkNew<vtkCBC3DBCCLattice> lattice;
+      vtkNew<ErrorCatcher> catcher;
+      lattice->AddObserver(vtkCommand::ErrorEvent, catcher);
+      lattice->SetInputData(image);
+      lattice->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Nope");
+      lattice->Update();
+      CHECK(catcher->Text.find("no label array") != std::string::npos);
+      CHECK(catcher->Text.find("Labels") != std::string::npos); // lists what is there
+    }
     image->GetPointData()->Initialize();
     CHECK(RunExpectingError(image).find("no label array") != std::string::npos);
   }

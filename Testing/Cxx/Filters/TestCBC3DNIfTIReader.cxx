@@ -147,7 +147,8 @@ std::vector<unsigned char> Gzip(const std::vector<unsigned char>& data)
 bool WriteFile(const std::string& path, const std::vector<unsigned char>& bytes)
 {
   std::ofstream file(path, std::ios::binary);
-  file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  file.write(
+    reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   return static_cast<bool>(file);
 }
 
