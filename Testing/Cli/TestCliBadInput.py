@@ -4,8 +4,8 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from nifti_writer import write_nifti  # noqa: E402
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Python"))
+from cbc3d_testing import write_nifti  # noqa: E402
 
 CLI = os.environ["CBC3D_CLI"]
 SOURCE = os.environ["CBC3D_SOURCE_DIR"]

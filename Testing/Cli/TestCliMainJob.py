@@ -8,13 +8,10 @@ import tempfile
 CLI = os.environ["CBC3D_CLI"]
 SOURCE = os.environ["CBC3D_SOURCE_DIR"]
 PHANTOM = os.path.join(SOURCE, "Data", "nested_shells.vti")
-failures = []
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Python"))
+from cbc3d_testing import Checks  # noqa: E402
 
-
-def check(condition, message):
-    print(("ok   " if condition else "FAIL ") + message)
-    if not condition:
-        failures.append(message)
+check = Checks()
 
 
 def run(*args):
@@ -65,5 +62,4 @@ with tempfile.TemporaryDirectory() as work:
     check(result.returncode == 0 and "--bcc-size" in result.stdout, "--help")
     check([f for f in os.listdir(work) if ".part-" in f] == [], "no temporary files left")
 
-print("%d failed" % len(failures))
-sys.exit(1 if failures else 0)
+check.finish()

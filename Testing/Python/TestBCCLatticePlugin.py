@@ -10,15 +10,10 @@ from paraview import servermanager
 plugin = os.environ["CBC3D_PLUGIN"]
 source_dir = os.environ["CBC3D_SOURCE_DIR"]
 LoadPlugin(plugin, remote=False, ns=globals())
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cbc3d_testing import Checks, dihedral_angles  # noqa: E402
 
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAIL:", message)
-
+check = Checks()
 
 # The oblique phantom: uint16 label 128, anisotropic spacing, a reflected direction matrix.
 image = XMLImageDataReader(FileName=[os.path.join(source_dir, "Data", "oblique_ball.vti")])
@@ -42,16 +37,7 @@ conn = vtk_to_numpy(mesh.GetCells().GetConnectivityArray()).reshape(-1, 4)
 p = points[conn]  # (tets, 4, 3)
 volume = np.einsum("ij,ij->i", np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), p[:, 3] - p[:, 0]) / 6
 check(bool((volume > 0).all()), "every tet positively oriented")
-angles = []
-for a, b, c, d in [(0, 1, 2, 3), (1, 2, 0, 3), (2, 0, 1, 3), (0, 3, 1, 2), (1, 3, 0, 2), (2, 3, 0, 1)]:
-    e = p[:, b] - p[:, a]
-    e /= np.linalg.norm(e, axis=1)[:, None]
-    u = p[:, c] - p[:, a]
-    v = p[:, d] - p[:, a]
-    u -= np.einsum("ij,ij->i", u, e)[:, None] * e
-    v -= np.einsum("ij,ij->i", v, e)[:, None] * e
-    angles.append(np.degrees(np.arctan2(np.linalg.norm(np.cross(u, v), axis=1), np.einsum("ij,ij->i", u, v))))
-angles = np.sort(np.stack(angles, axis=1), axis=1)
+angles = dihedral_angles(p)
 check(np.allclose(angles[:, :4], 60.0, atol=1e-6) and np.allclose(angles[:, 4:], 90.0, atol=1e-6),
       "dihedral angles are 60 and 90 degrees")
 
@@ -102,5 +88,4 @@ check(abs(fields.GetArray("MinDihedralAngle").GetValue(0) - 60) < 1e-6, "quality
 check(abs(fields.GetArray("MaxDihedralAngle").GetValue(0) - 90) < 1e-6, "quality proxy: max 90")
 check([fields.GetArray("TissueLabel").GetValue(i) for i in range(3)] == [1, 2, 3], "quality proxy: tissues 1 2 3")
 
-print("%d failed checks" % len(failures))
-sys.exit(1 if failures else 0)
+check.finish()

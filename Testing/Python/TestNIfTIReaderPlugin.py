@@ -15,11 +15,9 @@ Environment: CBC3D_PLUGIN (the plugin .so), CBC3D_SHARED_DATA, CBC3D_TEST_OUTPUT
 synthetic files; default: a temporary folder). Exits 0 on success, 1 on failure, 77 to skip.
 """
 
-import gzip
 import itertools
 import math
 import os
-import struct
 import sys
 import tempfile
 
@@ -29,55 +27,16 @@ from paraview import servermanager
 from paraview.simple import LoadPlugin, OpenDataFile, Delete
 from vtkmodules.util import numpy_support
 
-failures = []
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cbc3d_testing import Checks, read_nifti_header as read_header, write_nifti  # noqa: E402
+
+check = Checks()
+failures = check.failures
 
 
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAIL: " + message)
-    return condition
-
-
-# ---------------------------------------------------------------------------------------------
-# NIfTI-1 header, written and read with struct (offsets from the NIfTI-1 standard, nifti1.h).
-
-def write_nifti(path, dims, pixdim, qform_code=0, sform_code=0, quatern=(0, 0, 0),
-                qoffset=(0, 0, 0), srows=((0, 0, 0, 0), (0, 0, 0, 0), (0, 0, 0, 0))):
-    """A 3-D int16 image whose voxel at file index (i, j, k) holds 1 + i + nx*(j + ny*k).
-    pixdim = (qfac, dx, dy, dz)."""
-    header = bytearray(352)
-    struct.pack_into("<i", header, 0, 348)
-    struct.pack_into("<8h", header, 40, 3, dims[0], dims[1], dims[2], 1, 1, 1, 1)
-    struct.pack_into("<hh", header, 70, 4, 16)  # datatype DT_INT16, bitpix
-    struct.pack_into("<8f", header, 76, *pixdim, 0, 0, 0, 0)
-    struct.pack_into("<ff", header, 108, 352.0, 1.0)  # vox_offset, scl_slope
-    struct.pack_into("<hh", header, 252, qform_code, sform_code)
-    struct.pack_into("<6f", header, 256, *quatern, *qoffset)
-    struct.pack_into("<12f", header, 280, *srows[0], *srows[1], *srows[2])
-    header[344:348] = b"n+1\0"
-    n = dims[0] * dims[1] * dims[2]
-    data = struct.pack("<%dh" % n, *range(1, n + 1))
-    opener = gzip.open if path.endswith(".gz") else open
-    with opener(path, "wb") as f:
-        f.write(bytes(header) + data)
-
-
-def read_header(path):
-    opener = gzip.open if path.endswith(".gz") else open
-    with opener(path, "rb") as f:
-        raw = f.read(348)
-    endian = "<" if struct.unpack("<i", raw[:4])[0] == 348 else ">"
-    u = lambda fmt, offset: struct.unpack_from(endian + fmt, raw, offset)
-    return {
-        "dim": u("8h", 40),
-        "pixdim": u("8f", 76),
-        "qform_code": u("h", 252)[0],
-        "sform_code": u("h", 254)[0],
-        "quatern": u("3f", 256),
-        "qoffset": u("3f", 268),
-        "srow": (u("4f", 280), u("4f", 296), u("4f", 312)),
-    }
+def write_numbered(path, dims, pixdim, **transforms):
+    """An int16 image whose voxel at file index (i, j, k) holds 1 + i + nx*(j + ny*k)."""
+    write_nifti(path, dims, range(1, dims[0] * dims[1] * dims[2] + 1), "int16", pixdim, **transforms)
 
 
 def world(h, i, j, k):
@@ -194,19 +153,19 @@ def main():
     t = (31.5, -12.0, 48.25)
     srows = tuple(tuple(rot[r][c] * spacing[c] for c in range(3)) + (t[r],) for r in range(3))
     path_a = os.path.join(out, "oblique_reflected.nii.gz")
-    write_nifti(path_a, (6, 4, 5), (1.0,) + spacing, sform_code=1, srows=srows)
+    write_numbered(path_a, (6, 4, 5), (1.0,) + spacing, sform_code=1, srows=srows)
     check_reader(path_a, "oblique reflected sform (.nii.gz)", "sform", dims=(6, 4, 5))
 
     # 1b. the same sform beside an identity qform (qfac = +1): VTK keeps the slice order, so the
     # reflection reaches ParaView as a direction matrix with determinant -1.
     path_c = os.path.join(out, "oblique_reflected_with_qform.nii")
-    write_nifti(path_c, (6, 4, 5), (1.0,) + spacing, qform_code=1, sform_code=1, srows=srows)
+    write_numbered(path_c, (6, 4, 5), (1.0,) + spacing, qform_code=1, sform_code=1, srows=srows)
     check_reader(path_c, "oblique reflected sform + qform (.nii)", "sform", dims=(6, 4, 5),
                  det=-1.0)
 
     # 1c. qform only, qfac = -1, rotated; the srows are garbage that must be ignored.
     path_b = os.path.join(out, "qform_qfac_neg.nii")
-    write_nifti(path_b, (5, 3, 4), (-1.0, 1.1, 0.9, 1.6), qform_code=1,
+    write_numbered(path_b, (5, 3, 4), (-1.0, 1.1, 0.9, 1.6), qform_code=1,
                 quatern=(0.2, -0.1, 0.4), qoffset=(-5.0, 17.0, 2.5),
                 srows=((9, 9, 9, 9), (0, 0, 0, 0), (0, 0, 0, 0)))
     check_reader(path_b, "qform qfac=-1 (.nii)", "qform", dims=(5, 3, 4))

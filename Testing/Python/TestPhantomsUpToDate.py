@@ -31,14 +31,11 @@ VTI_FILES = ("ball.vti", "nested_shells.vti", "touching_boxes.vti", "thin_tube.v
 NIFTI_FILES = ("shells.nii.gz",)
 MAX_BYTES = 100 * 1024
 
-failures = []
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cbc3d_testing import Checks  # noqa: E402
 
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAIL: " + message)
-    return condition
+check = Checks()
+failures = check.failures
 
 
 def read_vti(path):

@@ -15,32 +15,16 @@ from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkFiltersCore import vtkProbeFilter
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cbc3d_testing import Checks, dihedral_angles  # noqa: E402
+
 shared = os.environ.get("CBC3D_SHARED_DATA", "")
 if not os.path.isdir(shared):
     print("SKIP: no shared data folder at %r (real images live in ../shared/data)" % shared)
     sys.exit(77)
 LoadPlugin(os.environ["CBC3D_PLUGIN"], remote=False, ns=globals())
 cli = os.environ["CBC3D_CLI"]
-failures = []
-
-
-def check(condition, message):
-    print(("ok   " if condition else "FAIL ") + message)
-    if not condition:
-        failures.append(message)
-
-
-def dihedral_angles(p):
-    angles = []
-    for a, b, c, d in [(0, 1, 2, 3), (1, 2, 0, 3), (2, 0, 1, 3), (0, 3, 1, 2), (1, 3, 0, 2), (2, 3, 0, 1)]:
-        e = p[:, b] - p[:, a]
-        e /= np.linalg.norm(e, axis=1)[:, None]
-        u = p[:, c] - p[:, a]
-        v = p[:, d] - p[:, a]
-        u -= np.einsum("ij,ij->i", u, e)[:, None] * e
-        v -= np.einsum("ij,ij->i", v, e)[:, None] * e
-        angles.append(np.degrees(np.arctan2(np.linalg.norm(np.cross(u, v), axis=1), np.einsum("ij,ij->i", u, v))))
-    return np.sort(np.stack(angles, axis=1), axis=1)
+check = Checks()
 
 
 def tissue_voxel_centres(image, background):
@@ -90,5 +74,4 @@ with tempfile.TemporaryDirectory() as work:
         if name == "cbc3d-ventricles.nii.gz":
             check(mesh_labels == {128}, "ventricles keep label 128")
 
-print("%d failed" % len(failures))
-sys.exit(1 if failures else 0)
+check.finish()

@@ -3,18 +3,9 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
-#include <cmath>
+#include "TestImages.h"
 
-namespace
-{
-cbc3d::LabelImage Cube(int n, std::int32_t label)
-{
-  cbc3d::LabelImage image;
-  image.Dimensions = { n, n, n };
-  image.Labels.assign(static_cast<std::size_t>(n) * n * n, label);
-  return image;
-}
-} // namespace
+#include <cmath>
 
 TEST(LabelImage, IndexAndWorldRoundTripWithReflectedDirection)
 {

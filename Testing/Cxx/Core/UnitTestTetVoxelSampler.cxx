@@ -2,16 +2,7 @@
 
 #include <gtest/gtest.h>
 
-namespace
-{
-cbc3d::LabelImage Cube(int n, std::int32_t label)
-{
-  cbc3d::LabelImage image;
-  image.Dimensions = { n, n, n };
-  image.Labels.assign(static_cast<std::size_t>(n) * n * n, label);
-  return image;
-}
-} // namespace
+#include "TestImages.h"
 
 TEST(TetVoxelSampler, CountsVoxelCentresInsideAndOnTheFaces)
 {

@@ -1,0 +1,86 @@
+"""Helpers shared by the Python tests (pvpython and plain Python): checks that collect
+failures, dihedral angles computed with numpy apart from the C++ code, and NIfTI-1 files
+written and read with the standard library (offsets from the NIfTI-1 standard, nifti1.h)."""
+import gzip
+import struct
+import sys
+
+
+class Checks:
+    """Collects failed checks; `finish()` prints the count and exits 1 if any failed."""
+
+    def __init__(self):
+        self.failures = []
+
+    def __call__(self, condition, message):
+        print(("ok   " if condition else "FAIL ") + message)
+        if not condition:
+            self.failures.append(message)
+        return condition
+
+    def finish(self):
+        print("%d failed checks" % len(self.failures))
+        sys.exit(1 if self.failures else 0)
+
+
+def dihedral_angles(p):
+    """Sorted dihedral angles in degrees of tets p with shape (tets, 4, 3)."""
+    import numpy as np
+
+    angles = []
+    for a, b, c, d in [(0, 1, 2, 3), (1, 2, 0, 3), (2, 0, 1, 3), (0, 3, 1, 2), (1, 3, 0, 2), (2, 3, 0, 1)]:
+        e = p[:, b] - p[:, a]
+        e /= np.linalg.norm(e, axis=1)[:, None]
+        u = p[:, c] - p[:, a]
+        v = p[:, d] - p[:, a]
+        u -= np.einsum("ij,ij->i", u, e)[:, None] * e
+        v -= np.einsum("ij,ij->i", v, e)[:, None] * e
+        angles.append(np.degrees(np.arctan2(np.linalg.norm(np.cross(u, v), axis=1), np.einsum("ij,ij->i", u, v))))
+    return np.sort(np.stack(angles, axis=1), axis=1)
+
+
+# NIfTI-1 datatype codes and struct formats.
+NIFTI_TYPES = {"uint8": (2, "B"), "int16": (4, "h"), "int32": (8, "i"), "float32": (16, "f"),
+               "rgb24": (128, "BBB")}
+
+
+def write_nifti(path, dims, values, dtype="int16", pixdim=(1.0, 1.0, 1.0, 1.0), qform_code=0,
+                sform_code=0, quatern=(0, 0, 0), qoffset=(0, 0, 0),
+                srows=((0, 0, 0, 0), (0, 0, 0, 0), (0, 0, 0, 0))):
+    """A 3-D NIfTI-1 file (.nii or .nii.gz). values: flat, x fastest (tuples for rgb24);
+    pixdim = (qfac, dx, dy, dz)."""
+    code, fmt = NIFTI_TYPES[dtype]
+    header = bytearray(352)
+    struct.pack_into("<i", header, 0, 348)
+    struct.pack_into("<8h", header, 40, 3, dims[0], dims[1], dims[2], 1, 1, 1, 1)
+    struct.pack_into("<hh", header, 70, code, 8 * struct.calcsize("<" + fmt))
+    struct.pack_into("<8f", header, 76, *pixdim, 0, 0, 0, 0)
+    struct.pack_into("<ff", header, 108, 352.0, 1.0)  # vox_offset, scl_slope
+    struct.pack_into("<hh", header, 252, qform_code, sform_code)
+    struct.pack_into("<6f", header, 256, *quatern, *qoffset)
+    struct.pack_into("<12f", header, 280, *srows[0], *srows[1], *srows[2])
+    header[344:348] = b"n+1\0"
+    body = b"".join(struct.pack("<" + fmt, *(v if isinstance(v, tuple) else (v,))) for v in values)
+    opener = gzip.open if path.endswith(".gz") else open
+    with opener(path, "wb") as f:
+        f.write(bytes(header) + body)
+
+
+def read_nifti_header(path):
+    opener = gzip.open if path.endswith(".gz") else open
+    with opener(path, "rb") as f:
+        raw = f.read(348)
+    endian = "<" if struct.unpack("<i", raw[:4])[0] == 348 else ">"
+
+    def field(fmt, offset):
+        return struct.unpack_from(endian + fmt, raw, offset)
+
+    return {
+        "dim": field("8h", 40),
+        "pixdim": field("8f", 76),
+        "qform_code": field("h", 252)[0],
+        "sform_code": field("h", 254)[0],
+        "quatern": field("3f", 256),
+        "qoffset": field("3f", 268),
+        "srow": (field("4f", 280), field("4f", 296), field("4f", 312)),
+    }
