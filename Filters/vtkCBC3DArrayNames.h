@@ -10,10 +10,14 @@
  * Field data (vtkCBC3DBCCLattice): `LatticeEdgeLength` (vtkDoubleArray, mm, 1 value), the
  * lattice cube edge used (the automatic choice when EdgeLength is 0).
  *
- * Field data (vtkCBC3DMeshQuality): `TetCount`, `MinDihedralAngle`, `MaxDihedralAngle`,
- * `InvertedTetCount` (one value each, over the whole mesh), and per tissue in ascending label
- * order `TissueLabel`, `TissueTetCount`, `TissueMinDihedralAngle`, `TissueMaxDihedralAngle`,
- * `TissueInvertedTetCount`.
+ * Field data (vtkCBC3DMeshQuality; its class comment says what each holds): over the whole
+ * mesh `TetCount`, `InvertedTetCount`, `SmallAngleTetCount`, `LargeAngleTetCount`,
+ * `MinDihedralAngle`, `MaxDihedralAngle`, `HausdorffDistance`, `HausdorffDistance95`,
+ * `MeanSurfaceDistance`; per tissue in ascending label order `TissueLabel`, `TissueTetCount`,
+ * `TissueInvertedTetCount`, `TissueSmallAngleTetCount`, `TissueLargeAngleTetCount`,
+ * `TissueMinDihedralAngle`, `TissueMaxDihedralAngle`, `TissueHausdorffDistance`,
+ * `TissueMeshToImageDistance`, `TissueImageToMeshDistance`, `TissueHausdorffDistance95`,
+ * `TissueMeanSurfaceDistance`.
  */
 #ifndef vtkCBC3DArrayNames_h
 #define vtkCBC3DArrayNames_h
@@ -26,7 +30,19 @@ constexpr const char* MaxDihedralAngle = "MaxDihedralAngle";
 constexpr const char* LatticeEdgeLength = "LatticeEdgeLength";
 constexpr const char* TetCount = "TetCount";
 constexpr const char* InvertedTetCount = "InvertedTetCount";
+constexpr const char* SmallAngleTetCount = "SmallAngleTetCount";
+constexpr const char* LargeAngleTetCount = "LargeAngleTetCount";
+constexpr const char* HausdorffDistance = "HausdorffDistance";
+constexpr const char* HausdorffDistance95 = "HausdorffDistance95";
+constexpr const char* MeanSurfaceDistance = "MeanSurfaceDistance";
 constexpr const char* TissueLabel = "TissueLabel";
+constexpr const char* TissueSmallAngleTetCount = "TissueSmallAngleTetCount";
+constexpr const char* TissueLargeAngleTetCount = "TissueLargeAngleTetCount";
+constexpr const char* TissueHausdorffDistance = "TissueHausdorffDistance";
+constexpr const char* TissueMeshToImageDistance = "TissueMeshToImageDistance";
+constexpr const char* TissueImageToMeshDistance = "TissueImageToMeshDistance";
+constexpr const char* TissueHausdorffDistance95 = "TissueHausdorffDistance95";
+constexpr const char* TissueMeanSurfaceDistance = "TissueMeanSurfaceDistance";
 constexpr const char* TissueTetCount = "TissueTetCount";
 constexpr const char* TissueMinDihedralAngle = "TissueMinDihedralAngle";
 constexpr const char* TissueMaxDihedralAngle = "TissueMaxDihedralAngle";

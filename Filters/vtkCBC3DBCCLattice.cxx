@@ -5,61 +5,14 @@
 
 #include "cbc3d/BCCLattice.h"
 
-#include <vtkDataObject.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
-#include <vtkNew.h>
-#include <vtkDataSetAttributes.h>
-#include <vtkImageData.h>
 #include <vtkInformation.h>
-#include <vtkInformationVector.h>
+#include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkUnstructuredGrid.h>
 
-#include <algorithm>
-
 vtkStandardNewMacro(vtkCBC3DBCCLattice);
-
-vtkCBC3DBCCLattice::vtkCBC3DBCCLattice()
-{
-  this->SetInputArrayToProcess(
-    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
-}
-
-void vtkCBC3DBCCLattice::AddBackgroundLabel(int label)
-{
-  if (std::find(this->BackgroundLabels.begin(), this->BackgroundLabels.end(), label) ==
-    this->BackgroundLabels.end())
-  {
-    this->BackgroundLabels.push_back(label);
-    this->Modified();
-  }
-}
-
-void vtkCBC3DBCCLattice::RemoveAllBackgroundLabels()
-{
-  if (!this->BackgroundLabels.empty())
-  {
-    this->BackgroundLabels.clear();
-    this->Modified();
-  }
-}
-
-void vtkCBC3DBCCLattice::SetBackgroundLabel(int label)
-{
-  this->RemoveAllBackgroundLabels();
-  this->AddBackgroundLabel(label);
-}
-
-int vtkCBC3DBCCLattice::GetNumberOfBackgroundLabels() const
-{
-  return static_cast<int>(this->BackgroundLabels.size());
-}
-
-int vtkCBC3DBCCLattice::GetBackgroundLabel(int index) const
-{
-  return this->BackgroundLabels.at(index);
-}
 
 int vtkCBC3DBCCLattice::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -70,16 +23,10 @@ int vtkCBC3DBCCLattice::FillInputPortInformation(int, vtkInformation* info)
 int vtkCBC3DBCCLattice::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  vtkImageData* input = vtkImageData::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
-
   cbc3d::LabelImage image;
-  std::string error;
-  vtkDataArray* labels = vtkCBC3DConvert::ChooseLabelArray(
-    this->GetInputArrayToProcess(0, inputVector), this->GetInputArrayInformation(0), input);
-  if (!vtkCBC3DConvert::ToLabelImage(input, labels, this->BackgroundLabels, image, error))
+  if (!this->ReadLabelImage(inputVector, image))
   {
-    vtkErrorMacro(<< error);
     return 0;
   }
 
@@ -112,11 +59,4 @@ void vtkCBC3DBCCLattice::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "EdgeLength: " << this->EdgeLength << " mm" << (this->EdgeLength == 0 ? " (auto)" : "")
      << "\n";
-  os << indent << "BackgroundLabels:";
-  for (const int label : this->BackgroundLabels)
-  {
-    os << " " << label;
-  }
-  os << "\n";
-  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }

@@ -31,15 +31,13 @@
 #define vtkCBC3DBCCLattice_h
 
 #include "vtkCBC3DFiltersModule.h" // For export macro
-#include "vtkUnstructuredGridAlgorithm.h"
+#include "vtkCBC3DAlgorithm.h"
 
-#include <vector> // For background labels
-
-class VTKCBC3DFILTERS_EXPORT vtkCBC3DBCCLattice : public vtkUnstructuredGridAlgorithm
+class VTKCBC3DFILTERS_EXPORT vtkCBC3DBCCLattice : public vtkCBC3DAlgorithm
 {
 public:
   static vtkCBC3DBCCLattice* New();
-  vtkTypeMacro(vtkCBC3DBCCLattice, vtkUnstructuredGridAlgorithm);
+  vtkTypeMacro(vtkCBC3DBCCLattice, vtkCBC3DAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -51,27 +49,8 @@ public:
   vtkGetMacro(EdgeLength, double);
   ///@}
 
-  ///@{
-  /**
-   * Labels that are not tissue. Default: the single label 0.
-   */
-  void AddBackgroundLabel(int label);
-  void RemoveAllBackgroundLabels();
-  void SetBackgroundLabel(int label);
-  int GetNumberOfBackgroundLabels() const;
-  int GetBackgroundLabel(int index) const;
-  ///@}
-
-  ///@{
-  /**
-   * Threads for the parallel loops; 0 (the default) uses all cores.
-   */
-  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
-  vtkGetMacro(NumberOfThreads, int);
-  ///@}
-
 protected:
-  vtkCBC3DBCCLattice();
+  vtkCBC3DBCCLattice() = default;
   ~vtkCBC3DBCCLattice() override = default;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
@@ -79,8 +58,6 @@ protected:
     vtkInformationVector* outputVector) override;
 
   double EdgeLength = 0.0;
-  std::vector<int> BackgroundLabels = { 0 };
-  int NumberOfThreads = 0;
 
 private:
   vtkCBC3DBCCLattice(const vtkCBC3DBCCLattice&) = delete;

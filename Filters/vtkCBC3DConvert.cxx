@@ -63,21 +63,20 @@ struct CopyLabels
 
 namespace vtkCBC3DConvert
 {
-vtkDataArray* ChooseLabelArray(
-  vtkDataArray* chosen, vtkInformation* arrayRequest, vtkImageData* image)
+vtkDataArray* ChooseLabelArray(vtkInformation* arrayRequest, vtkImageData* image)
 {
-  if (chosen)
-  {
-    return chosen;
-  }
-  const char* name = arrayRequest && arrayRequest->Has(vtkDataObject::FIELD_NAME())
-    ? arrayRequest->Get(vtkDataObject::FIELD_NAME())
-    : nullptr;
-  if ((name && *name) || !image)
+  if (!image)
   {
     return nullptr;
   }
   vtkPointData* pointData = image->GetPointData();
+  const char* name = arrayRequest && arrayRequest->Has(vtkDataObject::FIELD_NAME())
+    ? arrayRequest->Get(vtkDataObject::FIELD_NAME())
+    : nullptr;
+  if (name && *name)
+  {
+    return pointData->GetArray(name);
+  }
   if (vtkDataArray* scalars = pointData->GetScalars())
   {
     return scalars;

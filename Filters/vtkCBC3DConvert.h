@@ -24,14 +24,13 @@ class vtkUnstructuredGrid;
 namespace vtkCBC3DConvert
 {
 /**
- * The label array an algorithm was asked for: `chosen` (GetInputArrayToProcess) as described by
- * `arrayRequest` (GetInputArrayInformation). When no array name was chosen
- * (ParaView sends an empty name while the input's arrays are not yet known), falls back to the
- * active point scalars, then to the image's only point array. A name that was chosen but is
- * missing gives null, never another array.
+ * The label array an algorithm was asked for, looked up on the label image whatever input port
+ * the request names (ParaView's array properties always say port 0). `arrayRequest` is the
+ * algorithm's GetInputArrayInformation(0): a chosen name gives that point array (null if
+ * missing, never another array); no name (ParaView sends an empty one while the input's arrays
+ * are not yet known) gives the active point scalars, else the image's only point array.
  */
-vtkDataArray* ChooseLabelArray(
-  vtkDataArray* chosen, vtkInformation* arrayRequest, vtkImageData* image);
+vtkDataArray* ChooseLabelArray(vtkInformation* arrayRequest, vtkImageData* image);
 
 /**
  * Copies a label image into the core's frame and label storage. The array must be point data

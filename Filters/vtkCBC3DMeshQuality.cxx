@@ -3,25 +3,39 @@
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DConvert.h"
 
+#include "cbc3d/Parallel.h"
 #include "cbc3d/Quality.h"
+#include "cbc3d/SurfaceDistance.h"
+#include "cbc3d/SurfacePoints.h"
 
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
+#include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
+#include <vtkPointSet.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkStaticPointLocator.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
 #include <vector>
 
 vtkStandardNewMacro(vtkCBC3DMeshQuality);
 
 namespace
 {
+constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
+
 template <typename ArrayT, typename ValueT>
 void AddFieldArray(vtkFieldData* fields, const char* name, const std::vector<ValueT>& values)
 {
@@ -43,13 +57,85 @@ void AddCellArray(vtkUnstructuredGrid* grid, const char* name, const std::vector
   std::copy(values.begin(), values.end(), array->GetPointer(0));
   grid->GetCellData()->AddArray(array);
 }
+
+// Distance from every point of `from` to the nearest point of the located set, in parallel
+// (vtkStaticPointLocator::FindClosestPoint is thread safe once built).
+std::vector<double> NearestDistances(const std::vector<Eigen::Vector3d>& from,
+  vtkStaticPointLocator* to, vtkPoints* toPoints, int threads)
+{
+  std::vector<double> distances(from.size());
+  const std::int64_t count = static_cast<std::int64_t>(from.size());
+#pragma omp parallel for schedule(static) num_threads(cbc3d::ThreadCount(threads))
+  for (std::int64_t i = 0; i < count; ++i)
+  {
+    const vtkIdType nearest = to->FindClosestPoint(from[i].data());
+    double p[3];
+    toPoints->GetPoint(nearest, p);
+    distances[i] = (from[i] - Eigen::Vector3d(p[0], p[1], p[2])).norm();
+  }
+  return distances;
+}
+
+vtkSmartPointer<vtkStaticPointLocator> MakeLocator(
+  const std::vector<Eigen::Vector3d>& points, vtkPoints* storage)
+{
+  storage->SetDataTypeToDouble();
+  storage->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    storage->SetPoint(static_cast<vtkIdType>(i), points[i].data());
+  }
+  vtkNew<vtkPolyData> cloud;
+  cloud->SetPoints(storage);
+  auto locator = vtkSmartPointer<vtkStaticPointLocator>::New();
+  locator->SetDataSet(cloud);
+  locator->BuildLocator();
+  return locator;
+}
+
+// One row of the per-tissue table.
+struct TissueRow
+{
+  int Label = 0;
+  cbc3d::DihedralSummary Angles;
+  cbc3d::SurfaceDistanceSummary Distances = { NaN, NaN, NaN, NaN, NaN };
+  std::size_t DistanceCount = 0; // points behind the mean
+};
 } // namespace
+
+vtkCBC3DMeshQuality::vtkCBC3DMeshQuality()
+  : vtkCBC3DAlgorithm(1)
+{
+  this->SetNumberOfInputPorts(2);
+}
+
+void vtkCBC3DMeshQuality::SetImageConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(1, output);
+}
+
+void vtkCBC3DMeshQuality::SetImageData(vtkImageData* image)
+{
+  this->SetInputData(1, image);
+}
+
+int vtkCBC3DMeshQuality::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+    return 1;
+  }
+  return this->Superclass::FillInputPortInformation(port, info);
+}
 
 int vtkCBC3DMeshQuality::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkUnstructuredGrid* input = vtkUnstructuredGrid::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
+  const bool withImage = inputVector[1]->GetNumberOfInformationObjects() > 0;
 
   cbc3d::TetMesh mesh;
   std::string error;
@@ -58,40 +144,153 @@ int vtkCBC3DMeshQuality::RequestData(
     vtkErrorMacro(<< error);
     return 0;
   }
-  this->UpdateProgress(0.1);
+  cbc3d::LabelImage image;
+  if (withImage && !this->ReadLabelImage(inputVector, image))
+  {
+    return 0;
+  }
+  this->UpdateProgress(0.05);
+
   cbc3d::TetDihedralExtremes perTet;
   const cbc3d::QualitySummary summary =
     cbc3d::SummarizeQuality(mesh, this->NumberOfThreads, &perTet);
-  this->UpdateProgress(0.9);
+  this->UpdateProgress(0.3);
+
+  std::set<int> labels;
+  for (const auto& entry : summary.Tissues)
+  {
+    labels.insert(entry.first);
+  }
+  std::map<std::int32_t, std::vector<cbc3d::PointId>> surface;
+  std::map<std::int32_t, std::vector<Eigen::Vector3d>> boundary;
+  if (withImage)
+  {
+    surface = cbc3d::TissueSurfaceVertices(mesh);
+    boundary = cbc3d::TissueBoundaryVoxelCentres(image, this->NumberOfThreads);
+    for (const auto& entry : boundary)
+    {
+      labels.insert(entry.first);
+    }
+  }
+  this->UpdateProgress(0.5);
+
+  std::vector<TissueRow> rows;
+  double done = 0.0;
+  for (const int label : labels)
+  {
+    TissueRow row;
+    row.Label = label;
+    const auto angles = summary.Tissues.find(label);
+    if (angles != summary.Tissues.end())
+    {
+      row.Angles = angles->second;
+    }
+    else
+    {
+      row.Angles.MinDegrees = row.Angles.MaxDegrees = NaN;
+    }
+    if (withImage)
+    {
+      const auto meshSide = surface.find(label);
+      const auto imageSide = boundary.find(label);
+      if (meshSide == surface.end() || imageSide == boundary.end())
+      {
+        vtkWarningMacro(<< "tissue " << label << " is in the "
+                        << (meshSide == surface.end() ? "image but not in the mesh"
+                                                      : "mesh but not in the image")
+                        << ": its distances are NaN");
+      }
+      else
+      {
+        std::vector<Eigen::Vector3d> meshPoints;
+        meshPoints.reserve(meshSide->second.size());
+        for (const cbc3d::PointId id : meshSide->second)
+        {
+          meshPoints.push_back(mesh.Points[id]);
+        }
+        vtkNew<vtkPoints> meshStorage, imageStorage;
+        auto meshLocator = MakeLocator(meshPoints, meshStorage);
+        auto imageLocator = MakeLocator(imageSide->second, imageStorage);
+        std::vector<double> meshToImage =
+          NearestDistances(meshPoints, imageLocator, imageStorage, this->NumberOfThreads);
+        std::vector<double> imageToMesh =
+          NearestDistances(imageSide->second, meshLocator, meshStorage, this->NumberOfThreads);
+        row.DistanceCount = meshToImage.size() + imageToMesh.size();
+        row.Distances = cbc3d::SummarizeSurfaceDistances(meshToImage, imageToMesh);
+      }
+    }
+    rows.push_back(row);
+    done += 1.0;
+    this->UpdateProgress(0.5 + 0.5 * done / static_cast<double>(labels.size()));
+    if (this->CheckAbort())
+    {
+      output->Initialize();
+      return 1;
+    }
+  }
 
   output->ShallowCopy(input);
   AddCellArray(output, vtkCBC3DArrayNames::MinDihedralAngle, perTet.MinDegrees);
   AddCellArray(output, vtkCBC3DArrayNames::MaxDihedralAngle, perTet.MaxDegrees);
 
+  namespace names = vtkCBC3DArrayNames;
   vtkNew<vtkFieldData> fields;
   fields->DeepCopy(input->GetFieldData());
   const cbc3d::DihedralSummary& all = summary.Overall;
-  AddFieldArray<vtkIdTypeArray>(fields, vtkCBC3DArrayNames::TetCount, std::vector<vtkIdType>{ all.Tets });
-  AddFieldArray<vtkDoubleArray>(fields, vtkCBC3DArrayNames::MinDihedralAngle, std::vector<double>{ all.MinDegrees });
-  AddFieldArray<vtkDoubleArray>(fields, vtkCBC3DArrayNames::MaxDihedralAngle, std::vector<double>{ all.MaxDegrees });
-  AddFieldArray<vtkIdTypeArray>(fields, vtkCBC3DArrayNames::InvertedTetCount, std::vector<vtkIdType>{ all.Inverted });
+  const bool empty = all.Tets == 0;
+  AddFieldArray<vtkIdTypeArray>(fields, names::TetCount, std::vector<vtkIdType>{ all.Tets });
+  AddFieldArray<vtkIdTypeArray>(fields, names::InvertedTetCount, std::vector<vtkIdType>{ all.Inverted });
+  AddFieldArray<vtkIdTypeArray>(fields, names::SmallAngleTetCount, std::vector<vtkIdType>{ all.SmallAngle });
+  AddFieldArray<vtkIdTypeArray>(fields, names::LargeAngleTetCount, std::vector<vtkIdType>{ all.LargeAngle });
+  AddFieldArray<vtkDoubleArray>(fields, names::MinDihedralAngle, std::vector<double>{ empty ? NaN : all.MinDegrees });
+  AddFieldArray<vtkDoubleArray>(fields, names::MaxDihedralAngle, std::vector<double>{ empty ? NaN : all.MaxDegrees });
 
-  std::vector<int> labels;
-  std::vector<vtkIdType> tets, inverted;
-  std::vector<double> minima, maxima;
-  for (const auto& [label, figures] : summary.Tissues)
+  std::vector<int> tissueLabels;
+  std::vector<vtkIdType> tets, inverted, small, large;
+  std::vector<double> minima, maxima, hausdorff, meshToImage, imageToMesh, hausdorff95, mean;
+  double meshHausdorff = rows.empty() ? NaN : 0.0, meshHausdorff95 = meshHausdorff;
+  double distanceSum = 0.0;
+  std::size_t distanceCount = 0;
+  for (const TissueRow& row : rows)
   {
-    labels.push_back(label);
-    tets.push_back(figures.Tets);
-    minima.push_back(figures.MinDegrees);
-    maxima.push_back(figures.MaxDegrees);
-    inverted.push_back(figures.Inverted);
+    tissueLabels.push_back(row.Label);
+    tets.push_back(row.Angles.Tets);
+    inverted.push_back(row.Angles.Inverted);
+    small.push_back(row.Angles.SmallAngle);
+    large.push_back(row.Angles.LargeAngle);
+    minima.push_back(row.Angles.MinDegrees);
+    maxima.push_back(row.Angles.MaxDegrees);
+    const cbc3d::SurfaceDistanceSummary& d = row.Distances;
+    hausdorff.push_back(d.Hausdorff);
+    meshToImage.push_back(d.AToB);
+    imageToMesh.push_back(d.BToA);
+    hausdorff95.push_back(d.Percentile95);
+    mean.push_back(d.Mean);
+    // NaN (a tissue on one side only) must win over any finite distance.
+    meshHausdorff = std::isnan(d.Hausdorff) ? NaN : std::max(meshHausdorff, d.Hausdorff);
+    meshHausdorff95 = std::isnan(d.Percentile95) ? NaN : std::max(meshHausdorff95, d.Percentile95);
+    distanceSum += std::isnan(d.Mean) ? NaN : d.Mean * static_cast<double>(row.DistanceCount);
+    distanceCount += row.DistanceCount;
   }
-  AddFieldArray<vtkIntArray>(fields, vtkCBC3DArrayNames::TissueLabel, labels);
-  AddFieldArray<vtkIdTypeArray>(fields, vtkCBC3DArrayNames::TissueTetCount, tets);
-  AddFieldArray<vtkDoubleArray>(fields, vtkCBC3DArrayNames::TissueMinDihedralAngle, minima);
-  AddFieldArray<vtkDoubleArray>(fields, vtkCBC3DArrayNames::TissueMaxDihedralAngle, maxima);
-  AddFieldArray<vtkIdTypeArray>(fields, vtkCBC3DArrayNames::TissueInvertedTetCount, inverted);
+  AddFieldArray<vtkIntArray>(fields, names::TissueLabel, tissueLabels);
+  AddFieldArray<vtkIdTypeArray>(fields, names::TissueTetCount, tets);
+  AddFieldArray<vtkIdTypeArray>(fields, names::TissueInvertedTetCount, inverted);
+  AddFieldArray<vtkIdTypeArray>(fields, names::TissueSmallAngleTetCount, small);
+  AddFieldArray<vtkIdTypeArray>(fields, names::TissueLargeAngleTetCount, large);
+  AddFieldArray<vtkDoubleArray>(fields, names::TissueMinDihedralAngle, minima);
+  AddFieldArray<vtkDoubleArray>(fields, names::TissueMaxDihedralAngle, maxima);
+  if (withImage)
+  {
+    AddFieldArray<vtkDoubleArray>(fields, names::HausdorffDistance, std::vector<double>{ meshHausdorff });
+    AddFieldArray<vtkDoubleArray>(fields, names::HausdorffDistance95, std::vector<double>{ meshHausdorff95 });
+    AddFieldArray<vtkDoubleArray>(fields, names::MeanSurfaceDistance,
+      std::vector<double>{ distanceCount ? distanceSum / double(distanceCount) : NaN });
+    AddFieldArray<vtkDoubleArray>(fields, names::TissueHausdorffDistance, hausdorff);
+    AddFieldArray<vtkDoubleArray>(fields, names::TissueMeshToImageDistance, meshToImage);
+    AddFieldArray<vtkDoubleArray>(fields, names::TissueImageToMeshDistance, imageToMesh);
+    AddFieldArray<vtkDoubleArray>(fields, names::TissueHausdorffDistance95, hausdorff95);
+    AddFieldArray<vtkDoubleArray>(fields, names::TissueMeanSurfaceDistance, mean);
+  }
   output->SetFieldData(fields);
   this->UpdateProgress(1.0);
   return 1;
@@ -100,5 +299,4 @@ int vtkCBC3DMeshQuality::RequestData(
 void vtkCBC3DMeshQuality::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
 }

@@ -1,51 +1,69 @@
 /**
  * @class   vtkCBC3DMeshQuality
- * @brief   Dihedral angles of a labelled tetrahedral mesh, per tet, per tissue and overall.
+ * @brief   Dihedral angles and, with the label image, the Hausdorff distance of a labelled mesh.
  *
- * Input: a vtkUnstructuredGrid of VTK_TETRA cells with an integer `Label` cell array (the
- * output of the other CBC3D filters). The angles are computed here, not with vtkMeshQuality:
- * that filter has no maximum dihedral angle, and in VTK 9.2 its tet "MinAngle" is wrong for
- * slivers.
+ * Input port 0: a vtkUnstructuredGrid of VTK_TETRA cells with an integer `Label` cell array (the
+ * output of the other CBC3D filters). Input port 1 (optional): the label image the mesh was made
+ * from (its label array is input array 0; background labels as in the other filters).
+ *
+ * The dihedral angles are computed here, not with vtkMeshQuality: that filter has no maximum
+ * dihedral angle, and in VTK 9.2 its tet "MinAngle" is wrong for some slivers.
+ *
+ * With the image, each tissue's fidelity is measured as in the CBC3D paper: between the tissue's
+ * surface vertices (vertices of mesh faces that belong to exactly one tet of the tissue) and the
+ * centres of its boundary voxels (voxels of the tissue with a face-neighbour outside it, the
+ * image border counting as outside), in the image's physical frame (mm). Nearest points are
+ * found with vtkStaticPointLocator.
  *
  * Output: the input mesh plus
  * - cell data `MinDihedralAngle`, `MaxDihedralAngle` (vtkDoubleArray, degrees);
- * - field data, overall: `TetCount` (vtkIdTypeArray, 1 value), `MinDihedralAngle` and
- *   `MaxDihedralAngle` (vtkDoubleArray, degrees, 1 value), `InvertedTetCount` (vtkIdTypeArray);
- * - field data, per tissue, one value per tissue in ascending label order: `TissueLabel`
- *   (vtkIntArray), `TissueTetCount`, `TissueMinDihedralAngle`, `TissueMaxDihedralAngle`,
- *   `TissueInvertedTetCount`.
+ * - field data over the whole mesh (one value each): `TetCount`, `InvertedTetCount`,
+ *   `SmallAngleTetCount` (tets with an angle under 10 degrees), `LargeAngleTetCount` (over 170
+ *   degrees) (vtkIdTypeArray); `MinDihedralAngle`, `MaxDihedralAngle` (vtkDoubleArray, degrees);
+ *   with the image, `HausdorffDistance` (the maximum over tissues), `HausdorffDistance95` (the
+ *   maximum over tissues) and `MeanSurfaceDistance` (over all tissues' points) (mm);
+ * - field data per tissue, one value per tissue in ascending label order: `TissueLabel`
+ *   (vtkIntArray), `TissueTetCount`, `TissueInvertedTetCount`, `TissueSmallAngleTetCount`,
+ *   `TissueLargeAngleTetCount`, `TissueMinDihedralAngle`, `TissueMaxDihedralAngle`; with the
+ *   image, `TissueHausdorffDistance`, `TissueMeshToImageDistance` and
+ *   `TissueImageToMeshDistance` (the two one-sided distances), `TissueHausdorffDistance95` (the
+ *   larger of the two one-sided 95th percentiles) and `TissueMeanSurfaceDistance` (mm).
+ *
+ * A tissue present in only one of mesh and image gets NaN distances and a warning; the mesh's
+ * distances are then NaN too (a lost tissue has no finite distance).
  *
  * @sa vtkCBC3DBCCLattice
  */
 #ifndef vtkCBC3DMeshQuality_h
 #define vtkCBC3DMeshQuality_h
 
+#include "vtkCBC3DAlgorithm.h"
 #include "vtkCBC3DFiltersModule.h" // For export macro
-#include "vtkUnstructuredGridAlgorithm.h"
 
-class VTKCBC3DFILTERS_EXPORT vtkCBC3DMeshQuality : public vtkUnstructuredGridAlgorithm
+class vtkImageData;
+
+class VTKCBC3DFILTERS_EXPORT vtkCBC3DMeshQuality : public vtkCBC3DAlgorithm
 {
 public:
   static vtkCBC3DMeshQuality* New();
-  vtkTypeMacro(vtkCBC3DMeshQuality, vtkUnstructuredGridAlgorithm);
+  vtkTypeMacro(vtkCBC3DMeshQuality, vtkCBC3DAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
   /**
-   * Threads for the parallel loops; 0 (the default) uses all cores.
+   * The label image to measure the mesh against (input port 1, optional).
    */
-  vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
-  vtkGetMacro(NumberOfThreads, int);
+  void SetImageConnection(vtkAlgorithmOutput* output);
+  void SetImageData(vtkImageData* image);
   ///@}
 
 protected:
-  vtkCBC3DMeshQuality() = default;
+  vtkCBC3DMeshQuality();
   ~vtkCBC3DMeshQuality() override = default;
 
+  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
-
-  int NumberOfThreads = 0;
 
 private:
   vtkCBC3DMeshQuality(const vtkCBC3DMeshQuality&) = delete;

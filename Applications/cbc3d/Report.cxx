@@ -8,7 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <type_traits>
 #include <sstream>
 
 namespace
@@ -25,40 +28,77 @@ std::string Fixed(double value, int digits)
   return text;
 }
 
-nlohmann::json FiguresJson(const TissueFigures& figures)
+// JSON has no NaN: an unmeasured figure is null.
+nlohmann::json Number(double value)
 {
-  return { { "tetrahedra", figures.Tets }, { "min_dihedral_deg", figures.MinDihedral },
-    { "max_dihedral_deg", figures.MaxDihedral }, { "inverted_tetrahedra", figures.Inverted } };
+  return std::isnan(value) ? nlohmann::json(nullptr) : nlohmann::json(value);
+}
+
+void AddFigures(nlohmann::json& out, const TissueFigures& f)
+{
+  out["tetrahedra"] = f.Tets;
+  out["min_dihedral_deg"] = Number(f.MinDihedral);
+  out["max_dihedral_deg"] = Number(f.MaxDihedral);
+  out["inverted_tetrahedra"] = f.Inverted;
+  out["tetrahedra_under_10_deg"] = f.SmallAngle;
+  out["tetrahedra_over_170_deg"] = f.LargeAngle;
+  out["hausdorff_mm"] = Number(f.Hausdorff);
+  out["mesh_to_image_mm"] = Number(f.MeshToImage);
+  out["image_to_mesh_mm"] = Number(f.ImageToMesh);
+  out["hausdorff_95_mm"] = Number(f.Hausdorff95);
+  out["mean_distance_mm"] = Number(f.MeanDistance);
 }
 } // namespace
 
 bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
 {
   namespace names = vtkCBC3DArrayNames;
-  vtkDataArray* tets = Field(mesh, names::TetCount);
-  vtkDataArray* minimum = Field(mesh, names::MinDihedralAngle);
-  vtkDataArray* maximum = Field(mesh, names::MaxDihedralAngle);
-  vtkDataArray* inverted = Field(mesh, names::InvertedTetCount);
+  // Reads value i of a field array; missing arrays leave the default (NaN or 0).
+  auto read = [mesh](const char* name, vtkIdType i, auto& value) {
+    if (vtkDataArray* array = Field(mesh, name))
+    {
+      value = static_cast<std::decay_t<decltype(value)>>(array->GetTuple1(i));
+    }
+  };
   vtkDataArray* labels = Field(mesh, names::TissueLabel);
-  vtkDataArray* tissueTets = Field(mesh, names::TissueTetCount);
-  vtkDataArray* tissueMin = Field(mesh, names::TissueMinDihedralAngle);
-  vtkDataArray* tissueMax = Field(mesh, names::TissueMaxDihedralAngle);
-  vtkDataArray* tissueInverted = Field(mesh, names::TissueInvertedTetCount);
-  if (!tets || !minimum || !maximum || !inverted || !labels || !tissueTets || !tissueMin ||
-    !tissueMax || !tissueInverted)
+  if (!labels || !Field(mesh, names::TetCount))
   {
     return false;
   }
   report.Points = mesh->GetNumberOfPoints();
-  report.Overall = { static_cast<long long>(tets->GetTuple1(0)), minimum->GetTuple1(0),
-    maximum->GetTuple1(0), static_cast<long long>(inverted->GetTuple1(0)) };
+  TissueFigures& all = report.Overall;
+  read(names::TetCount, 0, all.Tets);
+  read(names::InvertedTetCount, 0, all.Inverted);
+  read(names::SmallAngleTetCount, 0, all.SmallAngle);
+  read(names::LargeAngleTetCount, 0, all.LargeAngle);
+  read(names::MinDihedralAngle, 0, all.MinDihedral);
+  read(names::MaxDihedralAngle, 0, all.MaxDihedral);
+  read(names::HausdorffDistance, 0, all.Hausdorff);
+  read(names::HausdorffDistance95, 0, all.Hausdorff95);
+  read(names::MeanSurfaceDistance, 0, all.MeanDistance);
   report.Tissues.clear();
   for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
   {
-    report.Tissues[static_cast<int>(labels->GetTuple1(i))] = { static_cast<long long>(
-                                                                 tissueTets->GetTuple1(i)),
-      tissueMin->GetTuple1(i), tissueMax->GetTuple1(i),
-      static_cast<long long>(tissueInverted->GetTuple1(i)) };
+    TissueFigures& tissue = report.Tissues[static_cast<int>(labels->GetTuple1(i))];
+    read(names::TissueTetCount, i, tissue.Tets);
+    read(names::TissueInvertedTetCount, i, tissue.Inverted);
+    read(names::TissueSmallAngleTetCount, i, tissue.SmallAngle);
+    read(names::TissueLargeAngleTetCount, i, tissue.LargeAngle);
+    read(names::TissueMinDihedralAngle, i, tissue.MinDihedral);
+    read(names::TissueMaxDihedralAngle, i, tissue.MaxDihedral);
+    read(names::TissueHausdorffDistance, i, tissue.Hausdorff);
+    read(names::TissueMeshToImageDistance, i, tissue.MeshToImage);
+    read(names::TissueImageToMeshDistance, i, tissue.ImageToMesh);
+    read(names::TissueHausdorffDistance95, i, tissue.Hausdorff95);
+    read(names::TissueMeanSurfaceDistance, i, tissue.MeanDistance);
+  }
+  // The mesh's one-sided distances are the largest over tissues, like its Hausdorff distance.
+  all.MeshToImage = all.ImageToMesh = report.Tissues.empty() ? all.Hausdorff : 0.0;
+  for (const auto& entry : report.Tissues)
+  {
+    const TissueFigures& t = entry.second;
+    all.MeshToImage = std::isnan(t.MeshToImage) ? t.MeshToImage : std::max(all.MeshToImage, t.MeshToImage);
+    all.ImageToMesh = std::isnan(t.ImageToMesh) ? t.ImageToMesh : std::max(all.ImageToMesh, t.ImageToMesh);
   }
   return true;
 }
@@ -70,11 +110,12 @@ std::string FormatSummary(const RunReport& report)
   out << "  lattice size " << Fixed(report.BCCSizeUsed, 3) << " mm\n";
   out << "  tetrahedra " << report.Overall.Tets << ", points " << report.Points
       << ", inverted " << report.Overall.Inverted << "\n";
-  out << "  tissue      tets  min dihedral  max dihedral\n";
+  out << "  tissue      tets  min dihedral  max dihedral  <10° >170°  Hausdorff mm (95%, mean)\n";
   auto row = [&out](const std::string& name, const TissueFigures& f) {
-    char line[160];
-    std::snprintf(line, sizeof(line), "  %-6s %9lld  %11.2f°  %11.2f°\n", name.c_str(), f.Tets,
-      f.MinDihedral, f.MaxDihedral);
+    char line[200];
+    std::snprintf(line, sizeof(line), "  %-6s %9lld  %11.2f°  %11.2f° %5lld %5lld  %8.2f (%.2f, %.2f)\n",
+      name.c_str(), f.Tets, f.MinDihedral, f.MaxDihedral, f.SmallAngle, f.LargeAngle, f.Hausdorff,
+      f.Hausdorff95, f.MeanDistance);
     out << line;
   };
   for (const auto& [label, figures] : report.Tissues)
@@ -100,11 +141,8 @@ std::string FormatJson(const RunReport& report)
   doc["parameters"] = { { "bcc_size_mm", report.BCCSizeUsed }, { "fidelity", o.Fidelity },
     { "pattern", o.Pattern }, { "iterations", o.Iterations },
     { "background", o.BackgroundLabels }, { "threads", o.Threads } };
-  doc["tetrahedra"] = report.Overall.Tets;
+  AddFigures(doc, report.Overall);
   doc["points"] = report.Points;
-  doc["min_dihedral_deg"] = report.Overall.MinDihedral;
-  doc["max_dihedral_deg"] = report.Overall.MaxDihedral;
-  doc["inverted_tetrahedra"] = report.Overall.Inverted;
   nlohmann::json seconds = nlohmann::json::object();
   for (const auto& [stage, value] : report.Seconds)
   {
@@ -114,7 +152,7 @@ std::string FormatJson(const RunReport& report)
   nlohmann::json tissues = nlohmann::json::object();
   for (const auto& [label, figures] : report.Tissues)
   {
-    tissues[std::to_string(label)] = FiguresJson(figures);
+    AddFigures(tissues[std::to_string(label)], figures);
   }
   doc["tissues"] = tissues;
   return doc.dump(2) + "\n";

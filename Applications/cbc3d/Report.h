@@ -3,6 +3,7 @@
 
 #include "CommandLine.h"
 
+#include <limits>
 #include <map>
 #include <string>
 #include <utility>
@@ -17,6 +18,14 @@ struct TissueFigures
   double MinDihedral = 0.0;
   double MaxDihedral = 0.0;
   long long Inverted = 0;
+  long long SmallAngle = 0; // tets with an angle under 10 degrees
+  long long LargeAngle = 0; // tets with an angle over 170 degrees
+  // Distances to the image boundary in mm (NaN: not measured, or a tissue on one side only).
+  double Hausdorff = std::numeric_limits<double>::quiet_NaN();
+  double MeshToImage = std::numeric_limits<double>::quiet_NaN();
+  double ImageToMesh = std::numeric_limits<double>::quiet_NaN();
+  double Hausdorff95 = std::numeric_limits<double>::quiet_NaN();
+  double MeanDistance = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// What one run of cbc3d measured.

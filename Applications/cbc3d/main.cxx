@@ -156,6 +156,12 @@ int main(int argc, char* argv[])
 
   vtkNew<vtkCBC3DMeshQuality> quality;
   quality->SetInputConnection(lattice->GetOutputPort());
+  quality->SetImageData(image);
+  quality->RemoveAllBackgroundLabels();
+  for (const int label : options.BackgroundLabels)
+  {
+    quality->AddBackgroundLabel(label);
+  }
   quality->SetNumberOfThreads(options.Threads);
   if (!RunStage(quality, "quality", showProgress, report, error))
   {

@@ -14,6 +14,8 @@ void DihedralSummary::Merge(const DihedralSummary& other)
   this->MinDegrees = std::min(this->MinDegrees, other.MinDegrees);
   this->MaxDegrees = std::max(this->MaxDegrees, other.MaxDegrees);
   this->Inverted += other.Inverted;
+  this->SmallAngle += other.SmallAngle;
+  this->LargeAngle += other.LargeAngle;
 }
 
 QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads,
@@ -42,6 +44,8 @@ QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads,
       one.MinDegrees = *lo * RadiansToDegrees;
       one.MaxDegrees = *hi * RadiansToDegrees;
       one.Inverted = SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) > 0.0 ? 0 : 1;
+      one.SmallAngle = one.MinDegrees < SmallAngleDegrees ? 1 : 0;
+      one.LargeAngle = one.MaxDegrees > LargeAngleDegrees ? 1 : 0;
       local[mesh.Labels[t]].Merge(one);
       if (perTet)
       {

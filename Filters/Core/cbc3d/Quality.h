@@ -10,13 +10,19 @@
 
 namespace cbc3d
 {
+/// The thresholds users compare meshers by: slivers and needles show up as either.
+constexpr double SmallAngleDegrees = 10.0;
+constexpr double LargeAngleDegrees = 170.0;
+
 /// Dihedral-angle figures of a set of tets, in degrees.
 struct DihedralSummary
 {
   std::int64_t Tets = 0;
   double MinDegrees = std::numeric_limits<double>::infinity();
   double MaxDegrees = -std::numeric_limits<double>::infinity();
-  std::int64_t Inverted = 0; // tets with non-positive volume
+  std::int64_t Inverted = 0;   // tets with non-positive volume
+  std::int64_t SmallAngle = 0; // tets with a dihedral angle under SmallAngleDegrees
+  std::int64_t LargeAngle = 0; // tets with a dihedral angle over LargeAngleDegrees
 
   void Merge(const DihedralSummary& other);
 };

@@ -1,0 +1,29 @@
+#ifndef cbc3d_SurfacePoints_h
+#define cbc3d_SurfacePoints_h
+
+#include "cbc3d/LabelImage.h"
+#include "cbc3d/TetMesh.h"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <map>
+#include <vector>
+
+namespace cbc3d
+{
+/// The point sets between which the paper measures a tissue's Hausdorff distance.
+
+/// Per tissue label, the ids of the mesh vertices on that tissue's surface: the vertices of the
+/// faces that belong to exactly one tet of the tissue (outer boundary and interfaces alike).
+/// Ids are ascending.
+std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(const TetMesh& mesh);
+
+/// Per tissue label, the world-space centres of the tissue's boundary voxels: voxels of the
+/// tissue with a face-neighbour (6-neighbour) outside it, the image border counting as
+/// outside. In voxel order (x fastest), the same for any thread count.
+std::map<std::int32_t, std::vector<Eigen::Vector3d>> TissueBoundaryVoxelCentres(
+  const LabelImage& image, int numberOfThreads = 0);
+} // namespace cbc3d
+
+#endif

@@ -1,0 +1,80 @@
+#include "vtkCBC3DAlgorithm.h"
+
+#include "vtkCBC3DConvert.h"
+
+#include "cbc3d/LabelImage.h"
+
+#include <vtkDataObject.h>
+#include <vtkDataSetAttributes.h>
+#include <vtkImageData.h>
+#include <vtkInformationVector.h>
+
+#include <algorithm>
+
+vtkCBC3DAlgorithm::vtkCBC3DAlgorithm(int imagePort)
+  : ImagePort(imagePort)
+{
+  this->SetInputArrayToProcess(
+    0, imagePort, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+}
+
+void vtkCBC3DAlgorithm::AddBackgroundLabel(int label)
+{
+  if (std::find(this->BackgroundLabels.begin(), this->BackgroundLabels.end(), label) ==
+    this->BackgroundLabels.end())
+  {
+    this->BackgroundLabels.push_back(label);
+    this->Modified();
+  }
+}
+
+void vtkCBC3DAlgorithm::RemoveAllBackgroundLabels()
+{
+  if (!this->BackgroundLabels.empty())
+  {
+    this->BackgroundLabels.clear();
+    this->Modified();
+  }
+}
+
+void vtkCBC3DAlgorithm::SetBackgroundLabel(int label)
+{
+  this->RemoveAllBackgroundLabels();
+  this->AddBackgroundLabel(label);
+}
+
+int vtkCBC3DAlgorithm::GetNumberOfBackgroundLabels() const
+{
+  return static_cast<int>(this->BackgroundLabels.size());
+}
+
+int vtkCBC3DAlgorithm::GetBackgroundLabel(int index) const
+{
+  return this->BackgroundLabels.at(index);
+}
+
+bool vtkCBC3DAlgorithm::ReadLabelImage(vtkInformationVector** inputVector, cbc3d::LabelImage& image)
+{
+  vtkImageData* input = vtkImageData::GetData(inputVector[this->ImagePort]);
+  vtkDataArray* labels =
+    vtkCBC3DConvert::ChooseLabelArray(this->GetInputArrayInformation(0), input);
+  std::string error;
+  if (!vtkCBC3DConvert::ToLabelImage(input, labels, this->BackgroundLabels, image, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  return true;
+}
+
+void vtkCBC3DAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "BackgroundLabels:";
+  for (const int label : this->BackgroundLabels)
+  {
+    os << " " << label;
+  }
+  os << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+}

@@ -1,0 +1,69 @@
+#include "cbc3d/SurfaceDistance.h"
+#include "cbc3d/SurfacePoints.h"
+
+#include <gtest/gtest.h>
+
+#include "TestImages.h"
+
+TEST(SurfacePoints, BoundaryVoxelsOfABlockAreAllButItsCore)
+{
+  cbc3d::LabelImage image = Cube(7, 0);
+  // A 3x3x3 block of label 4 touching the image border at x = 0, and a lone voxel of label 9.
+  for (int k = 2; k <= 4; ++k)
+    for (int j = 2; j <= 4; ++j)
+      for (int i = 0; i <= 2; ++i)
+        image.Labels[image.VoxelIndex(i, j, k)] = 4;
+  image.Labels[image.VoxelIndex(5, 5, 5)] = 9;
+  const auto boundary = cbc3d::TissueBoundaryVoxelCentres(image, 2);
+  ASSERT_EQ(boundary.size(), 2u);
+  // The block's middle layer i = 0 touches the border: its centre voxel (0,3,3) counts too, so
+  // only (1,3,3) is interior.
+  EXPECT_EQ(boundary.at(4).size(), 26u);
+  EXPECT_EQ(boundary.at(9).size(), 1u);
+  EXPECT_TRUE(boundary.at(9)[0].isApprox(Eigen::Vector3d(5, 5, 5)));
+  for (const auto& centre : boundary.at(4))
+    EXPECT_FALSE(centre.isApprox(Eigen::Vector3d(1, 3, 3)));
+}
+
+TEST(SurfacePoints, SurfaceVerticesIncludeInterfacesAndSkipInteriorVertices)
+{
+  // The 8 tets of an octahedron (vertices +-x, +-y, +-z) around the origin, label 1 where
+  // z > 0 and label 2 where z < 0.
+  cbc3d::TetMesh mesh;
+  mesh.Points = { { 0, 0, 0 }, { 1, 0, 0 }, { -1, 0, 0 }, { 0, 1, 0 }, { 0, -1, 0 }, { 0, 0, 1 },
+    { 0, 0, -1 } };
+  const int xs[2] = { 1, 2 }, ys[2] = { 3, 4 }, zs[2] = { 5, 6 };
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b)
+      for (int c = 0; c < 2; ++c)
+      {
+        mesh.Tets.push_back({ 0, xs[a], ys[b], zs[c] });
+        mesh.Labels.push_back(c == 0 ? 1 : 2);
+      }
+  const auto surface = cbc3d::TissueSurfaceVertices(mesh);
+  ASSERT_EQ(surface.size(), 2u);
+  // Label 1 (the upper half): its surface is the four upper faces plus the interface z = 0,
+  // so every vertex but the lower apex 6, the origin included.
+  EXPECT_EQ(surface.at(1), (std::vector<cbc3d::PointId>{ 0, 1, 2, 3, 4, 5 }));
+  EXPECT_EQ(surface.at(2), (std::vector<cbc3d::PointId>{ 0, 1, 2, 3, 4, 6 }));
+
+  // With one label everywhere the origin is interior.
+  std::fill(mesh.Labels.begin(), mesh.Labels.end(), 3);
+  EXPECT_EQ(cbc3d::TissueSurfaceVertices(mesh).at(3), (std::vector<cbc3d::PointId>{ 1, 2, 3, 4, 5, 6 }));
+}
+
+TEST(SurfaceDistance, SummaryOfKnownDistances)
+{
+  std::vector<double> aToB = { 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20 };
+  std::vector<double> bToA = { 0.5, 30.0 };
+  const cbc3d::SurfaceDistanceSummary s = cbc3d::SummarizeSurfaceDistances(aToB, bToA);
+  EXPECT_DOUBLE_EQ(s.AToB, 20.0);
+  EXPECT_DOUBLE_EQ(s.BToA, 30.0);
+  EXPECT_DOUBLE_EQ(s.Hausdorff, 30.0);
+  // Nearest rank: the 19th of 20 values for A, the 2nd of 2 for B.
+  EXPECT_DOUBLE_EQ(s.Percentile95, 30.0);
+  EXPECT_DOUBLE_EQ(s.Mean, (210.0 + 30.5) / 22.0);
+  std::vector<double> only = { 4, 1, 3, 2, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20 };
+  std::vector<double> same = only;
+  EXPECT_DOUBLE_EQ(cbc3d::SummarizeSurfaceDistances(only, same).Percentile95, 19.0);
+}
