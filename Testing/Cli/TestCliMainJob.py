@@ -35,6 +35,16 @@ with tempfile.TemporaryDirectory() as work:
     check(sum(t["tetrahedra"] for t in report["tissues"].values()) == report["tetrahedra"],
           "tissue tet counts add up")
     check(report["parameters"]["bcc_size_mm"] == 2.0, "report records the lattice size")
+    # Fidelity: the lattice is within a lattice cell of the shells, never exactly on them.
+    hd = report["hausdorff_mm"]
+    check(isinstance(hd, float) and 0.0 < hd <= 2.0 * 3 ** 0.5, "hausdorff_mm %r within one lattice cube diagonal" % hd)
+    check(hd == max(t["hausdorff_mm"] for t in report["tissues"].values()), "mesh Hausdorff is the largest tissue's")
+    for label, tissue in report["tissues"].items():
+        check(max(tissue["mesh_to_image_mm"], tissue["image_to_mesh_mm"]) == tissue["hausdorff_mm"]
+              and tissue["mean_distance_mm"] <= tissue["hausdorff_95_mm"] <= tissue["hausdorff_mm"],
+              "tissue %s: one-sided, 95th percentile and mean distances are consistent" % label)
+        check(tissue["tetrahedra_under_10_deg"] == 0 and tissue["tetrahedra_over_170_deg"] == 0,
+              "tissue %s: no tets under 10 or over 170 degrees" % label)
     check(all(k in report["seconds"] for k in ("read", "lattice", "total")), "seconds per stage")
     # The summary on stdout gives the same figures as the report.
     check("tetrahedra %d, points %d" % (report["tetrahedra"], report["points"]) in result.stdout,
