@@ -7,17 +7,43 @@
 
 namespace cbc3d
 {
-void LabelCounts::Add(std::int32_t label)
+void LabelCounts::Add(std::int32_t label, std::int64_t weight)
 {
   for (auto& entry : this->Counts)
   {
     if (entry.first == label)
     {
-      ++entry.second;
+      entry.second += weight;
       return;
     }
   }
-  this->Counts.emplace_back(label, 1);
+  this->Counts.emplace_back(label, weight);
+}
+
+std::int64_t LabelCounts::Of(std::int32_t label) const
+{
+  for (const auto& entry : this->Counts)
+  {
+    if (entry.first == label)
+    {
+      return entry.second;
+    }
+  }
+  return 0;
+}
+
+bool LabelCounts::Majority(std::int32_t& label) const
+{
+  std::int64_t best = 0;
+  for (const auto& entry : this->Counts)
+  {
+    if (entry.second > best || (entry.second == best && entry.first < label))
+    {
+      best = entry.second;
+      label = entry.first;
+    }
+  }
+  return best > 0;
 }
 
 std::int64_t LabelCounts::Total() const
@@ -57,7 +83,11 @@ bool LabelCounts::MajorityTissue(const LabelImage& image, std::int32_t& label) c
 
 namespace
 {
-// Barycentric test in index space; a small tolerance makes points on faces count.
+// A direction in index space that no lattice face plane contains: a point on a face belongs
+// to the tet this direction points into.
+const Eigen::Vector3d TieBreak(1.0, 0.31830988618379067, 0.10132118364233778);
+
+// Barycentric test in index space with the tie-break above for points on faces.
 struct IndexSpaceTet
 {
   Eigen::Vector3d Base;
@@ -82,14 +112,30 @@ struct IndexSpaceTet
   {
     constexpr double tolerance = 1e-9;
     const Eigen::Vector3d b = this->ToBarycentric * (point - this->Base);
-    return b.minCoeff() >= -tolerance && b.sum() <= 1.0 + tolerance;
+    const double b0 = 1.0 - b.sum();
+    if (b.minCoeff() < -tolerance || b0 < -tolerance)
+    {
+      return false;
+    }
+    // On a face (a coordinate near zero): inside only if moving along TieBreak enters the tet,
+    // that is, if that coordinate grows along it.
+    const Eigen::Vector3d growth = this->ToBarycentric * TieBreak;
+    for (int i = 0; i < 3; ++i)
+    {
+      if (b[i] <= tolerance && growth[i] <= 0.0)
+      {
+        return false;
+      }
+    }
+    return !(b0 <= tolerance && -growth.sum() <= 0.0);
   }
 };
 
 // Samples each voxel at the centres of a subdivision^3 sub-grid; returns the samples taken.
 std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int subdivision,
-  LabelCounts& counts)
+  LabelCounts& counts, std::int32_t owner, std::int32_t* voxelOwner)
 {
+  const std::int64_t weight = VoxelWeight / (std::int64_t(subdivision) * subdivision * subdivision);
   const double step = 1.0 / subdivision;
   const double offset = 0.5 * step - 0.5; // 0 at subdivision 1: the voxel centres
   std::array<std::int64_t, 3> first, last;
@@ -118,7 +164,11 @@ std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int s
         const int vi = std::clamp(static_cast<int>(std::lround(point[0])), 0, image.Dimensions[0] - 1);
         const int vj = std::clamp(static_cast<int>(std::lround(point[1])), 0, image.Dimensions[1] - 1);
         const int vk = std::clamp(static_cast<int>(std::lround(point[2])), 0, image.Dimensions[2] - 1);
-        counts.Add(image.LabelAt(vi, vj, vk));
+        counts.Add(image.LabelAt(vi, vj, vk), weight);
+        if (voxelOwner && subdivision == 1)
+        {
+          voxelOwner[image.VoxelIndex(vi, vj, vk)] = owner;
+        }
         ++samples;
       }
     }
@@ -128,7 +178,7 @@ std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int s
 } // namespace
 
 void SampleTetLabels(const LabelImage& image, const std::array<Eigen::Vector3d, 4>& corners,
-  LabelCounts& counts)
+  LabelCounts& counts, std::int32_t owner, std::int32_t* voxelOwner)
 {
   counts.Clear();
   std::array<Eigen::Vector3d, 4> index;
@@ -139,7 +189,7 @@ void SampleTetLabels(const LabelImage& image, const std::array<Eigen::Vector3d, 
   const IndexSpaceTet tet(index);
   for (int subdivision = 1; subdivision <= 16; subdivision *= 2)
   {
-    if (SampleGrid(image, tet, subdivision, counts) > 0)
+    if (SampleGrid(image, tet, subdivision, counts, owner, voxelOwner) > 0)
     {
       return;
     }

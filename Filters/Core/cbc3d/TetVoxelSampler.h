@@ -12,27 +12,39 @@
 
 namespace cbc3d
 {
-/// How many samples of each label a tet holds.
+/// Sample weights: a whole voxel weighs VoxelWeight; a sample of a sub-grid with s samples per
+/// voxel along each axis weighs VoxelWeight / s^3 (s up to 16).
+constexpr std::int64_t VoxelWeight = 16 * 16 * 16;
+
+/// How much of each label a tet holds, in sample weights.
 struct LabelCounts
 {
-  std::vector<std::pair<std::int32_t, std::int64_t>> Counts; // (label, samples), small
+  std::vector<std::pair<std::int32_t, std::int64_t>> Counts; // (label, weight), small
 
   void Clear() { this->Counts.clear(); }
-  void Add(std::int32_t label);
+  void Add(std::int32_t label, std::int64_t weight = VoxelWeight);
+  /// The weight of one label (0 if absent).
+  std::int64_t Of(std::int32_t label) const;
   std::int64_t Total() const;
   /// Samples of labels that are tissues of the image.
   std::int64_t TissueTotal(const LabelImage& image) const;
   /// The most frequent tissue label (ties go to the smaller label); false when there is none.
   bool MajorityTissue(const LabelImage& image, std::int32_t& label) const;
+  /// The most frequent label of all, background included (ties go to the smaller label);
+  /// false when the tet holds no sample.
+  bool Majority(std::int32_t& label) const;
 };
 
-/// Counts the labels of the voxel centres inside a tet given by its world-space corners
-/// (points on the tet's faces count). A tet smaller than a voxel may hold no voxel centre:
-/// then the tet's box is sampled on a finer grid, 2, 4, 8 and at most 16 samples per voxel
-/// along each axis, each sample taking the label of the voxel it falls in (the paper's
-/// local up-sampling). Samples outside the image are ignored.
+/// Counts the labels of the voxel centres inside a tet given by its world-space corners.
+/// A point on the boundary of tets belongs to exactly one of them: the one that a fixed,
+/// generic direction points into from it, so the tets of a conforming mesh share out the
+/// voxels with none counted twice. A tet smaller than a voxel may hold no voxel centre: then
+/// the tet's box is sampled on a finer grid, 2, 4, 8 and at most 16 samples per voxel along
+/// each axis, each sample taking the label of the voxel it falls in (the paper's local
+/// up-sampling) with a weight of its share of a voxel. Samples outside the image are ignored.
+/// With `voxelOwner`, each voxel whose centre the tet owns gets `owner` written at its index.
 void SampleTetLabels(const LabelImage& image, const std::array<Eigen::Vector3d, 4>& corners,
-  LabelCounts& counts);
+  LabelCounts& counts, std::int32_t owner = -1, std::int32_t* voxelOwner = nullptr);
 } // namespace cbc3d
 
 #endif

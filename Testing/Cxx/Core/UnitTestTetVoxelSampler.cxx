@@ -4,18 +4,33 @@
 
 #include "TestImages.h"
 
-TEST(TetVoxelSampler, CountsVoxelCentresInsideAndOnTheFaces)
+TEST(TetVoxelSampler, TetsOfACubeShareOutItsVoxelCentresOnce)
 {
+  // The six tets around the diagonal of the cube [0,4]^3 (corner c has bits x=1, y=2, z=4).
+  // Points on shared faces go to exactly one tet; on the cube's own faces the tie-break
+  // direction (all components positive) keeps the lower faces and leaves the upper ones to the
+  // next cube: the tets own exactly the 4 x 4 x 4 centres with i, j, k in [0, 4).
   const cbc3d::LabelImage image = Cube(6, 7);
-  // Corner tet of side 4: the grid points with i, j, k >= 0 and i + j + k <= 4, C(7,3) = 35.
-  const std::array<Eigen::Vector3d, 4> corners = { Eigen::Vector3d(0, 0, 0),
-    Eigen::Vector3d(4, 0, 0), Eigen::Vector3d(0, 4, 0), Eigen::Vector3d(0, 0, 4) };
-  cbc3d::LabelCounts counts;
-  cbc3d::SampleTetLabels(image, corners, counts);
-  EXPECT_EQ(counts.Total(), 35);
-  std::int32_t label = 0;
-  ASSERT_TRUE(counts.MajorityTissue(image, label));
-  EXPECT_EQ(label, 7);
+  auto corner = [](int c) { return Eigen::Vector3d(c & 1 ? 4 : 0, c & 2 ? 4 : 0, c & 4 ? 4 : 0); };
+  const int tets[6][4] = { { 0, 1, 3, 7 }, { 0, 3, 2, 7 }, { 0, 2, 6, 7 }, { 0, 6, 4, 7 },
+    { 0, 4, 5, 7 }, { 0, 5, 1, 7 } };
+  std::vector<std::int32_t> owner(image.Labels.size(), -1);
+  std::int64_t total = 0;
+  for (int t = 0; t < 6; ++t)
+  {
+    cbc3d::LabelCounts counts;
+    cbc3d::SampleTetLabels(image, { corner(tets[t][0]), corner(tets[t][1]), corner(tets[t][2]),
+      corner(tets[t][3]) }, counts, t, owner.data());
+    total += counts.Total();
+    std::int32_t label = 0;
+    ASSERT_TRUE(counts.MajorityTissue(image, label));
+    EXPECT_EQ(label, 7);
+  }
+  EXPECT_EQ(total, 64 * cbc3d::VoxelWeight);
+  for (int k = 0; k < 6; ++k)
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 6; ++i)
+        EXPECT_EQ(owner[image.VoxelIndex(i, j, k)] >= 0, i < 4 && j < 4 && k < 4) << i << j << k;
 }
 
 TEST(TetVoxelSampler, UpsamplesATetThatHoldsNoVoxelCentre)
@@ -47,5 +62,8 @@ TEST(TetVoxelSampler, MajorityTieGoesToTheSmallerTissueLabel)
   std::int32_t label = -1;
   ASSERT_TRUE(counts.MajorityTissue(image, label)); // background 0 never wins
   EXPECT_EQ(label, 4);
-  EXPECT_EQ(counts.TissueTotal(image), 2);
+  EXPECT_EQ(counts.TissueTotal(image), 2 * cbc3d::VoxelWeight);
+  std::int32_t any = -1;
+  ASSERT_TRUE(counts.Majority(any)); // background 0 has the most weight
+  EXPECT_EQ(any, 0);
 }
