@@ -6,9 +6,13 @@
  * - `Label` (vtkIntArray): the tissue label of each tet, the label value of the input image
  *   unchanged (a tissue labelled 128 in the image is 128 in the mesh).
  * - `MinDihedralAngle`, `MaxDihedralAngle` (vtkDoubleArray, degrees): per tet.
+ * - `RefinementLevel` (vtkUnsignedCharArray): red splits between the lattice and the tet.
  *
  * Field data (vtkCBC3DBCCLattice): `LatticeEdgeLength` (vtkDoubleArray, mm, 1 value), the
  * lattice cube edge used (the automatic choice when EdgeLength is 0).
+ *
+ * Field data (vtkCBC3DRefinement): `RefinementPasses`, `RefinementStopReason`, and per tissue
+ * `FidelityLabel`, `FidelityF1`, `FidelityF2`, `FidelityComponents`, `FidelityComponentsInMesh`.
  *
  * Field data (vtkCBC3DMeshQuality; its class comment says what each holds): over the whole
  * mesh `TetCount`, `InvertedTetCount`, `SmallAngleTetCount`, `LargeAngleTetCount`,
@@ -28,6 +32,14 @@ constexpr const char* Label = "Label";
 constexpr const char* MinDihedralAngle = "MinDihedralAngle";
 constexpr const char* MaxDihedralAngle = "MaxDihedralAngle";
 constexpr const char* LatticeEdgeLength = "LatticeEdgeLength";
+constexpr const char* RefinementLevel = "RefinementLevel";
+constexpr const char* RefinementPasses = "RefinementPasses";
+constexpr const char* RefinementStopReason = "RefinementStopReason";
+constexpr const char* FidelityLabel = "FidelityLabel";
+constexpr const char* FidelityF1 = "FidelityF1";
+constexpr const char* FidelityF2 = "FidelityF2";
+constexpr const char* FidelityComponents = "FidelityComponents";
+constexpr const char* FidelityComponentsInMesh = "FidelityComponentsInMesh";
 constexpr const char* TetCount = "TetCount";
 constexpr const char* InvertedTetCount = "InvertedTetCount";
 constexpr const char* SmallAngleTetCount = "SmallAngleTetCount";

@@ -4,6 +4,7 @@
 
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
+#include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <nlohmann/json.hpp>
@@ -47,6 +48,13 @@ void AddFigures(nlohmann::json& out, const TissueFigures& f)
   out["image_to_mesh_mm"] = Number(f.ImageToMesh);
   out["hausdorff_95_mm"] = Number(f.Hausdorff95);
   out["mean_distance_mm"] = Number(f.MeanDistance);
+  if (!std::isnan(f.F1))
+  {
+    out["fidelity_f1"] = f.F1;
+    out["fidelity_f2"] = f.F2;
+    out["components"] = f.Components;
+    out["components_in_mesh"] = f.ComponentsInMesh;
+  }
 }
 } // namespace
 
@@ -92,6 +100,23 @@ bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
     read(names::TissueHausdorffDistance95, i, tissue.Hausdorff95);
     read(names::TissueMeanSurfaceDistance, i, tissue.MeanDistance);
   }
+  if (vtkDataArray* fidelityLabels = Field(mesh, names::FidelityLabel))
+  {
+    read(names::RefinementPasses, 0, report.RefinementPasses);
+    if (auto* reason = vtkStringArray::SafeDownCast(
+          mesh->GetFieldData()->GetAbstractArray(names::RefinementStopReason)))
+    {
+      report.RefinementStopReason = reason->GetValue(0);
+    }
+    for (vtkIdType i = 0; i < fidelityLabels->GetNumberOfTuples(); ++i)
+    {
+      TissueFigures& tissue = report.Tissues[static_cast<int>(fidelityLabels->GetTuple1(i))];
+      read(names::FidelityF1, i, tissue.F1);
+      read(names::FidelityF2, i, tissue.F2);
+      read(names::FidelityComponents, i, tissue.Components);
+      read(names::FidelityComponentsInMesh, i, tissue.ComponentsInMesh);
+    }
+  }
   // The mesh's one-sided distances are the largest over tissues, like its Hausdorff distance.
   all.MeshToImage = all.ImageToMesh = report.Tissues.empty() ? all.Hausdorff : 0.0;
   for (const auto& entry : report.Tissues)
@@ -123,6 +148,18 @@ std::string FormatSummary(const RunReport& report)
     row(std::to_string(label), figures);
   }
   row("all", report.Overall);
+  if (report.RefinementPasses >= 0)
+  {
+    out << "  refinement: " << report.RefinementPasses << " passes, " << report.RefinementStopReason
+        << "\n  tissue  F1      F2      components (kept / in image)\n";
+    for (const auto& [label, f] : report.Tissues)
+    {
+      char line[160];
+      std::snprintf(line, sizeof(line), "  %-6d  %.4f  %.4f  %lld / %lld\n", label, f.F1, f.F2,
+        f.ComponentsInMesh, f.Components);
+      out << line;
+    }
+  }
   out << "  seconds:";
   for (const auto& [stage, seconds] : report.Seconds)
   {
@@ -149,6 +186,11 @@ std::string FormatJson(const RunReport& report)
     seconds[stage] = value;
   }
   doc["seconds"] = seconds;
+  if (report.RefinementPasses >= 0)
+  {
+    doc["refinement"] = { { "passes", report.RefinementPasses },
+      { "stop_reason", report.RefinementStopReason } };
+  }
   nlohmann::json tissues = nlohmann::json::object();
   for (const auto& [label, figures] : report.Tissues)
   {

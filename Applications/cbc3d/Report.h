@@ -26,6 +26,11 @@ struct TissueFigures
   double ImageToMesh = std::numeric_limits<double>::quiet_NaN();
   double Hausdorff95 = std::numeric_limits<double>::quiet_NaN();
   double MeanDistance = std::numeric_limits<double>::quiet_NaN();
+  // Voxel fidelity after refinement (NaN without refinement) and tissue components.
+  double F1 = std::numeric_limits<double>::quiet_NaN();
+  double F2 = std::numeric_limits<double>::quiet_NaN();
+  long long Components = -1;
+  long long ComponentsInMesh = -1;
 };
 
 /// What one run of cbc3d measured.
@@ -37,6 +42,8 @@ struct RunReport
   TissueFigures Overall;
   std::map<int, TissueFigures> Tissues;
   std::vector<std::pair<std::string, double>> Seconds; // per stage, in order
+  int RefinementPasses = -1;                           // -1: no refinement
+  std::string RefinementStopReason;
 };
 
 /// Takes the figures from a mesh that went through vtkCBC3DMeshQuality (its field data), so

@@ -9,6 +9,7 @@
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DBCCLattice.h"
 #include "vtkCBC3DMeshQuality.h"
+#include "vtkCBC3DRefinement.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>
@@ -50,6 +51,15 @@ struct ProgressLine
     }
   }
 };
+
+void SetBackground(vtkCBC3DAlgorithm* filter, const CommandLineOptions& options)
+{
+  filter->RemoveAllBackgroundLabels();
+  for (const int label : options.BackgroundLabels)
+  {
+    filter->AddBackgroundLabel(label);
+  }
+}
 
 class Stopwatch
 {
@@ -140,11 +150,7 @@ int main(int argc, char* argv[])
   vtkNew<vtkCBC3DBCCLattice> lattice;
   lattice->SetInputData(image);
   lattice->SetEdgeLength(options.BCCSize);
-  lattice->RemoveAllBackgroundLabels();
-  for (const int label : options.BackgroundLabels)
-  {
-    lattice->AddBackgroundLabel(label);
-  }
+  SetBackground(lattice, options);
   lattice->SetNumberOfThreads(options.Threads);
   if (!RunStage(lattice, "lattice", showProgress, report, error))
   {
@@ -154,14 +160,26 @@ int main(int argc, char* argv[])
     lattice->GetOutput()->GetFieldData()->GetArray(vtkCBC3DArrayNames::LatticeEdgeLength);
   report.BCCSizeUsed = edge ? edge->GetTuple1(0) : options.BCCSize;
 
-  vtkNew<vtkCBC3DMeshQuality> quality;
-  quality->SetInputConnection(lattice->GetOutputPort());
-  quality->SetImageData(image);
-  quality->RemoveAllBackgroundLabels();
-  for (const int label : options.BackgroundLabels)
+  vtkAlgorithm* mesher = lattice;
+  vtkNew<vtkCBC3DRefinement> refinement;
+  if (options.Fidelity > 0.0)
   {
-    quality->AddBackgroundLabel(label);
+    refinement->SetInputConnection(lattice->GetOutputPort());
+    refinement->SetImageData(image);
+    refinement->SetFidelity(options.Fidelity);
+    SetBackground(refinement, options);
+    refinement->SetNumberOfThreads(options.Threads);
+    if (!RunStage(refinement, "refinement", showProgress, report, error))
+    {
+      return Fail(error);
+    }
+    mesher = refinement;
   }
+
+  vtkNew<vtkCBC3DMeshQuality> quality;
+  quality->SetInputConnection(mesher->GetOutputPort());
+  quality->SetImageData(image);
+  SetBackground(quality, options);
   quality->SetNumberOfThreads(options.Threads);
   if (!RunStage(quality, "quality", showProgress, report, error))
   {
@@ -187,10 +205,10 @@ int main(int argc, char* argv[])
   }
   if (!options.Quiet)
   {
-    if (options.Fidelity > 0.0 || options.Iterations > 0)
+    if (options.Iterations > 0)
     {
-      std::cerr << "cbc3d: note: refinement (--fidelity) and deformation (--iterations) are not "
-                   "implemented yet; the mesh is the BCC lattice"
+      std::cerr << "cbc3d: note: deformation (--iterations) is not implemented yet; the mesh "
+                   "is not moved onto the image boundaries"
                 << std::endl;
     }
     std::cout << FormatSummary(report) << std::flush;

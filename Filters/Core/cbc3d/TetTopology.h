@@ -12,6 +12,8 @@ constexpr std::array<std::array<int, 2>, 6> TetEdges = { { { 0, 1 }, { 1, 2 }, {
   { 1, 3 }, { 2, 3 } } };
 constexpr std::array<std::array<int, 3>, 4> TetFaces = { { { 0, 1, 3 }, { 1, 2, 3 }, { 2, 0, 3 },
   { 0, 2, 1 } } };
+/// The edge opposite each edge (sharing no vertex with it): 01-23, 12-03, 20-13.
+constexpr std::array<int, 6> OppositeEdge = { 5, 3, 4, 1, 2, 0 };
 } // namespace cbc3d
 
 #endif

@@ -177,7 +177,7 @@ std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int s
 }
 } // namespace
 
-void SampleTetLabels(const LabelImage& image, const std::array<Eigen::Vector3d, 4>& corners,
+int SampleTetLabels(const LabelImage& image, const std::array<Eigen::Vector3d, 4>& corners,
   LabelCounts& counts, std::int32_t owner, std::int32_t* voxelOwner)
 {
   counts.Clear();
@@ -191,8 +191,9 @@ void SampleTetLabels(const LabelImage& image, const std::array<Eigen::Vector3d, 
   {
     if (SampleGrid(image, tet, subdivision, counts, owner, voxelOwner) > 0)
     {
-      return;
+      return subdivision;
     }
   }
+  return 0;
 }
 } // namespace cbc3d

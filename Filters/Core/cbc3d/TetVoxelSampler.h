@@ -43,7 +43,9 @@ struct LabelCounts
 /// each axis, each sample taking the label of the voxel it falls in (the paper's local
 /// up-sampling) with a weight of its share of a voxel. Samples outside the image are ignored.
 /// With `voxelOwner`, each voxel whose centre the tet owns gets `owner` written at its index.
-void SampleTetLabels(const LabelImage& image, const std::array<Eigen::Vector3d, 4>& corners,
+/// Returns the sub-grid used: 1 when the tet holds voxel centres (its counts are then whole
+/// voxels that no other tet counts), 2 to 16 otherwise, 0 when it holds no sample at all.
+int SampleTetLabels(const LabelImage& image, const std::array<Eigen::Vector3d, 4>& corners,
   LabelCounts& counts, std::int32_t owner = -1, std::int32_t* voxelOwner = nullptr);
 } // namespace cbc3d
 

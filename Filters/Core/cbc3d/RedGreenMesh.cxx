@@ -1,0 +1,199 @@
+#include "cbc3d/RedGreenMesh.h"
+
+#include "cbc3d/RedGreenTables.h"
+#include "cbc3d/TetTopology.h"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+
+namespace cbc3d
+{
+namespace
+{
+std::uint64_t EdgeKey(PointId a, PointId b)
+{
+  if (a > b)
+  {
+    std::swap(a, b);
+  }
+  return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint64_t>(b);
+}
+
+// The corners and edge midpoints of a tet, in local point order (see RedGreenTables.h).
+using LocalPoints = std::array<PointId, 10>;
+} // namespace
+
+RedGreenMesh::RedGreenMesh(const TetMesh& roots)
+  : PointList(roots.Points)
+{
+  this->RedList.reserve(roots.Tets.size());
+  for (const Tet& tet : roots.Tets)
+  {
+    this->RedList.push_back(RedTet{ tet, 0, true });
+  }
+}
+
+PointId RedGreenMesh::FindMidpoint(PointId a, PointId b) const
+{
+  const auto found = this->Midpoints.find(EdgeKey(a, b));
+  return found == this->Midpoints.end() ? -1 : found->second;
+}
+
+PointId RedGreenMesh::Midpoint(PointId a, PointId b)
+{
+  const auto inserted = this->Midpoints.emplace(EdgeKey(a, b), PointId(this->PointList.size()));
+  if (inserted.second)
+  {
+    this->PointList.push_back(0.5 * (this->PointList[a] + this->PointList[b]));
+  }
+  return inserted.first->second;
+}
+
+std::uint8_t RedGreenMesh::SplitMask(const Tet& tet) const
+{
+  std::uint8_t mask = 0;
+  for (int e = 0; e < 6; ++e)
+  {
+    if (this->FindMidpoint(tet[TetEdges[e][0]], tet[TetEdges[e][1]]) >= 0)
+    {
+      mask |= static_cast<std::uint8_t>(1u << e);
+    }
+  }
+  return mask;
+}
+
+bool RedGreenMesh::HasClosure(const Tet& tet) const
+{
+  const std::vector<LocalTet>* closure = GreenClosure(this->SplitMask(tet));
+  if (!closure)
+  {
+    return false;
+  }
+  LocalPoints local;
+  for (int v = 0; v < 4; ++v)
+  {
+    local[v] = tet[v];
+  }
+  for (int e = 0; e < 6; ++e)
+  {
+    local[4 + e] = this->FindMidpoint(tet[TetEdges[e][0]], tet[TetEdges[e][1]]);
+  }
+  // No child edge may be split: that would leave a point hanging on it.
+  for (const LocalTet& child : *closure)
+  {
+    for (const auto& edge : TetEdges)
+    {
+      if (this->FindMidpoint(local[child[edge[0]]], local[child[edge[1]]]) >= 0)
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+void RedGreenMesh::SplitRed(std::size_t red)
+{
+  const Tet tet = this->RedList[red].Points;
+  const int level = this->RedList[red].Level;
+  LocalPoints local;
+  for (int v = 0; v < 4; ++v)
+  {
+    local[v] = tet[v];
+  }
+  for (int e = 0; e < 6; ++e)
+  {
+    local[4 + e] = this->Midpoint(tet[TetEdges[e][0]], tet[TetEdges[e][1]]);
+  }
+  // The shortest of the three diagonals between midpoints of opposite edges.
+  int diagonal = 0;
+  double shortest = 0.0;
+  for (int d = 0; d < 3; ++d)
+  {
+    const double length = (this->PointList[local[4 + d]] - this->PointList[local[4 + OppositeEdge[d]]]).squaredNorm();
+    if (d == 0 || length < shortest)
+    {
+      shortest = length;
+      diagonal = d;
+    }
+  }
+  this->RedList[red].Leaf = false;
+  for (const LocalTet& child : RedChildren(diagonal))
+  {
+    this->RedList.push_back(
+      RedTet{ Tet{ local[child[0]], local[child[1]], local[child[2]], local[child[3]] }, level + 1, true });
+  }
+}
+
+std::size_t RedGreenMesh::Close()
+{
+  std::size_t splits = 0;
+  bool changed = true;
+  while (changed)
+  {
+    changed = false;
+    const std::size_t count = this->RedList.size();
+    for (std::size_t red = 0; red < count; ++red)
+    {
+      if (this->RedList[red].Leaf && !this->HasClosure(this->RedList[red].Points))
+      {
+        this->SplitRed(red);
+        ++splits;
+        changed = true;
+      }
+    }
+  }
+  return splits;
+}
+
+void RedGreenMesh::BuildConforming(std::vector<Tet>& tets, std::vector<std::int64_t>& source) const
+{
+  tets.clear();
+  source.clear();
+  for (std::size_t red = 0; red < this->RedList.size(); ++red)
+  {
+    if (!this->RedList[red].Leaf)
+    {
+      continue;
+    }
+    const Tet& tet = this->RedList[red].Points;
+    LocalPoints local;
+    for (int v = 0; v < 4; ++v)
+    {
+      local[v] = tet[v];
+    }
+    for (int e = 0; e < 6; ++e)
+    {
+      local[4 + e] = this->FindMidpoint(tet[TetEdges[e][0]], tet[TetEdges[e][1]]);
+    }
+    for (const LocalTet& child : *GreenClosure(this->SplitMask(tet)))
+    {
+      tets.push_back(Tet{ local[child[0]], local[child[1]], local[child[2]], local[child[3]] });
+      source.push_back(static_cast<std::int64_t>(red));
+    }
+  }
+}
+
+double RedGreenMesh::LongestEdge(std::size_t red) const
+{
+  const Tet& tet = this->RedList[red].Points;
+  double longest = 0.0;
+  for (const auto& edge : TetEdges)
+  {
+    longest = std::max(longest, (this->PointList[tet[edge[0]]] - this->PointList[tet[edge[1]]]).norm());
+  }
+  return longest;
+}
+
+double RedGreenMesh::ShortestEdge(std::size_t red) const
+{
+  const Tet& tet = this->RedList[red].Points;
+  double shortest = std::numeric_limits<double>::infinity();
+  for (const auto& edge : TetEdges)
+  {
+    shortest = std::min(shortest, (this->PointList[tet[edge[0]]] - this->PointList[tet[edge[1]]]).norm());
+  }
+  return shortest;
+}
+} // namespace cbc3d

@@ -1,0 +1,63 @@
+#ifndef cbc3d_RedGreenMesh_h
+#define cbc3d_RedGreenMesh_h
+
+#include "cbc3d/TetMesh.h"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace cbc3d
+{
+/// A red-green refinement hierarchy over a starting mesh (the roots, level 0).
+///
+/// Red tets are split 1:8 (children: level + 1) and stay in the hierarchy; the mesh is the red
+/// leaves, each closed by a green split when neighbours have split some of its edges. Green
+/// tets are never split: when one would need refining, its red parent (the leaf) is split.
+/// Every new point is an edge midpoint, shared by all tets around the edge, so the mesh stays
+/// conforming.
+class RedGreenMesh
+{
+public:
+  struct RedTet
+  {
+    Tet Points;
+    int Level = 0;
+    bool Leaf = true;
+  };
+
+  explicit RedGreenMesh(const TetMesh& roots);
+
+  const std::vector<Eigen::Vector3d>& Points() const { return this->PointList; }
+  const std::vector<RedTet>& Reds() const { return this->RedList; }
+
+  /// Splits a red leaf 1:8 along its shortest inner diagonal.
+  void SplitRed(std::size_t red);
+
+  /// Red-splits leaves until every leaf has a green closure none of whose edges is split;
+  /// returns the number of red splits this took.
+  std::size_t Close();
+
+  /// The conforming mesh: every leaf, green-split where its edges are split. `source[i]` is
+  /// the red leaf that final tet i comes from. Call after Close().
+  void BuildConforming(std::vector<Tet>& tets, std::vector<std::int64_t>& source) const;
+
+  /// The longest and the shortest edge of a red tet.
+  double LongestEdge(std::size_t red) const;
+  double ShortestEdge(std::size_t red) const;
+
+private:
+  PointId FindMidpoint(PointId a, PointId b) const;
+  PointId Midpoint(PointId a, PointId b);
+  std::uint8_t SplitMask(const Tet& tet) const;
+  bool HasClosure(const Tet& tet) const;
+
+  std::vector<Eigen::Vector3d> PointList;
+  std::vector<RedTet> RedList;
+  std::unordered_map<std::uint64_t, PointId> Midpoints; // key: the edge's two point ids
+};
+} // namespace cbc3d
+
+#endif

@@ -1,0 +1,298 @@
+#include "cbc3d/Refinement.h"
+
+#include "cbc3d/Parallel.h"
+#include "cbc3d/RedGreenMesh.h"
+#include "cbc3d/TetVoxelSampler.h"
+#include "cbc3d/TissueComponents.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+
+namespace cbc3d
+{
+namespace
+{
+// A tet that holds no sample at all (outside the image) has no label.
+constexpr std::int32_t NoLabel = std::numeric_limits<std::int32_t>::min();
+
+// Bytes per tet at peak: the hierarchy, the final tets, their samples and the VTK output.
+constexpr double BytesPerTet = 400.0;
+
+// One pass's view of the conforming mesh: tets, their red leaves, samples and labels.
+struct LabelledMesh
+{
+  std::vector<Tet> Tets;
+  std::vector<std::int64_t> Source;
+  std::vector<LabelCounts> Counts;
+  std::vector<char> HoldsVoxelCentres; // counts are whole voxels (else sub-samples)
+  std::vector<std::int32_t> Labels;
+  std::vector<std::int32_t> VoxelOwner; // final tet owning each voxel centre, or -1
+};
+
+void SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threads,
+  LabelledMesh& mesh)
+{
+  hierarchy.BuildConforming(mesh.Tets, mesh.Source);
+  const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
+  mesh.Counts.resize(count);
+  mesh.HoldsVoxelCentres.assign(count, 0);
+  mesh.Labels.assign(count, NoLabel);
+  mesh.VoxelOwner.assign(image.Labels.size(), -1);
+  const auto& points = hierarchy.Points();
+#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(threads))
+  for (std::int64_t t = 0; t < count; ++t)
+  {
+    const Tet& tet = mesh.Tets[t];
+    mesh.HoldsVoxelCentres[t] = 1 ==
+      SampleTetLabels(image, { points[tet[0]], points[tet[1]], points[tet[2]], points[tet[3]] },
+        mesh.Counts[t], static_cast<std::int32_t>(t), mesh.VoxelOwner.data());
+    std::int32_t label = NoLabel;
+    mesh.Counts[t].Majority(label);
+    mesh.Labels[t] = label;
+  }
+}
+
+// F1 and F2 of every tissue, and its components kept in the mesh.
+std::map<std::int32_t, TissueFidelity> MeasureFidelity(const LabelImage& image,
+  const TissueComponents& components, int minimumVoxels, const LabelledMesh& mesh,
+  std::vector<char>& componentInMesh)
+{
+  std::map<std::int32_t, double> inTets, shared, inImage;
+  for (std::size_t c = 0; c < components.Label.size(); ++c)
+  {
+    inImage[components.Label[c]] += double(components.Size[c]) * double(VoxelWeight);
+  }
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    // Only voxel centres count: each belongs to one tet. Sub-sampled tets hold none.
+    const std::int32_t label = mesh.Labels[t];
+    if (mesh.HoldsVoxelCentres[t] && label != NoLabel && image.IsTissue(label))
+    {
+      inTets[label] += double(mesh.Counts[t].Total());
+      shared[label] += double(mesh.Counts[t].Of(label));
+    }
+  }
+  componentInMesh.assign(components.Label.size(), 0);
+  for (std::size_t v = 0; v < image.Labels.size(); ++v)
+  {
+    const std::int32_t component = components.ComponentOfVoxel[v];
+    const std::int32_t owner = mesh.VoxelOwner[v];
+    if (component >= 0 && owner >= 0 && mesh.Labels[owner] == components.Label[component])
+    {
+      componentInMesh[component] = 1;
+    }
+  }
+  std::map<std::int32_t, TissueFidelity> result;
+  for (const auto& [label, voxels] : inImage)
+  {
+    TissueFidelity& f = result[label];
+    f.Label = label;
+    f.F1 = inTets[label] > 0 ? shared[label] / inTets[label] : 0.0;
+    f.F2 = voxels > 0 ? shared[label] / voxels : 0.0;
+  }
+  for (std::size_t c = 0; c < components.Label.size(); ++c)
+  {
+    if (components.Size[c] >= minimumVoxels)
+    {
+      TissueFidelity& f = result[components.Label[c]];
+      ++f.Components;
+      f.ComponentsInMesh += componentInMesh[c];
+    }
+  }
+  return result;
+}
+
+bool IsSmall(const TissueComponents& components, std::int32_t component, int minimumVoxels)
+{
+  return components.Size[component] < minimumVoxels;
+}
+} // namespace
+
+Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params,
+  TetMesh& out, RefinementResult& result, const Progress& progress)
+{
+  out = TetMesh();
+  result = RefinementResult();
+  const Status valid = ValidateLabelImage(image);
+  if (!valid.IsOk())
+  {
+    return valid;
+  }
+  if (!(params.Fidelity >= 0.0 && params.Fidelity <= 1.0))
+  {
+    return Status::Error("the fidelity must be a number from 0 to 1");
+  }
+  if (!(params.MinimumEdgeLength >= 0.0) || !std::isfinite(params.MinimumEdgeLength))
+  {
+    return Status::Error("the minimum edge length must be 0 (automatic) or a positive length in mm");
+  }
+  if (lattice.Tets.empty())
+  {
+    return Status::Error("the mesh to refine has no tets");
+  }
+  const double minimumEdge = params.MinimumEdgeLength > 0.0 ? params.MinimumEdgeLength
+                                                            : std::cbrt(image.Spacing.prod());
+  const std::size_t memoryLimit =
+    params.MemoryLimitBytes > 0 ? params.MemoryLimitBytes : PhysicalMemoryBytes() / 2;
+
+  const TissueComponents components = FindTissueComponents(image);
+  RedGreenMesh hierarchy(lattice);
+  LabelledMesh mesh;
+  std::map<std::int32_t, TissueFidelity> fidelity;
+  std::vector<char> componentInMesh;
+  const int expectedPasses = 2 + static_cast<int>(std::ceil(std::log2(
+    std::max(1.0, hierarchy.ShortestEdge(0) / minimumEdge))));
+
+  for (int pass = 0;; ++pass)
+  {
+    hierarchy.Close();
+    SampleAll(image, hierarchy, params.NumberOfThreads, mesh);
+    fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+    if (progress && !progress(std::min(0.95, double(pass + 1) / double(expectedPasses + 1))))
+    {
+      return Status::Aborted();
+    }
+    if (params.Fidelity == 0.0)
+    {
+      result.StopReason = "no refinement asked (fidelity 0)";
+      break;
+    }
+
+    // Which tets to split: those that cross the boundary of a tissue below the target, and
+    // those holding a tissue component that no tet of its tissue represents yet.
+    auto isFailing = [&](std::int32_t label) {
+      const auto found = fidelity.find(label);
+      return found != fidelity.end() &&
+        (found->second.F1 < params.Fidelity || found->second.F2 < params.Fidelity);
+    };
+    std::vector<char> marked(hierarchy.Reds().size(), 0);
+    for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+    {
+      const auto& counts = mesh.Counts[t].Counts;
+      if (counts.size() < 2)
+      {
+        continue;
+      }
+      for (const auto& entry : counts)
+      {
+        if (isFailing(entry.first))
+        {
+          marked[mesh.Source[t]] = 1;
+          break;
+        }
+      }
+    }
+    for (std::size_t v = 0; v < image.Labels.size(); ++v)
+    {
+      const std::int32_t component = components.ComponentOfVoxel[v];
+      if (component >= 0 && !componentInMesh[component] &&
+        !IsSmall(components, component, params.MinimumComponentVoxels) && mesh.VoxelOwner[v] >= 0)
+      {
+        marked[mesh.Source[mesh.VoxelOwner[v]]] = 1;
+      }
+    }
+    std::size_t splits = 0;
+    bool anyWanted = false;
+    for (std::size_t red = 0; red < marked.size(); ++red)
+    {
+      if (!marked[red])
+      {
+        continue;
+      }
+      anyWanted = true;
+      marked[red] = hierarchy.ShortestEdge(red) / 2.0 >= minimumEdge * (1.0 - 1e-9);
+      splits += marked[red];
+    }
+    if (splits == 0)
+    {
+      result.StopReason = anyWanted
+        ? "the tets left to refine are at the minimum edge length"
+        : "every tissue reached the fidelity target";
+      break;
+    }
+    // Each red split makes 8 tets of one; closure adds some more.
+    const double expectedTets = double(mesh.Tets.size()) + 10.0 * double(splits);
+    if (expectedTets * BytesPerTet > double(memoryLimit))
+    {
+      std::ostringstream reason;
+      reason << "stopped before exceeding the memory limit (about " << std::llround(expectedTets)
+             << " tets)";
+      result.StopReason = reason.str();
+      break;
+    }
+    for (std::size_t red = 0; red < marked.size(); ++red)
+    {
+      if (marked[red])
+      {
+        hierarchy.SplitRed(red);
+      }
+    }
+    ++result.Passes;
+  }
+
+  // A component still missing (at the minimum edge length) gets the tet holding most of it.
+  std::map<std::int32_t, std::map<std::int32_t, std::int64_t>> holders; // component -> tet -> voxels
+  for (std::size_t v = 0; v < image.Labels.size(); ++v)
+  {
+    const std::int32_t component = components.ComponentOfVoxel[v];
+    if (component >= 0 && !componentInMesh[component] &&
+      !IsSmall(components, component, params.MinimumComponentVoxels) && mesh.VoxelOwner[v] >= 0)
+    {
+      ++holders[component][mesh.VoxelOwner[v]];
+    }
+  }
+  for (const auto& [component, tets] : holders)
+  {
+    const auto best = std::max_element(tets.begin(), tets.end(),
+      [](const auto& a, const auto& b) { return a.second < b.second; }); // first of equals wins
+    mesh.Labels[best->first] = components.Label[component];
+  }
+  if (!holders.empty())
+  {
+    fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+  }
+
+  // Candidate mesh selection: keep the tissue tets, renumber their points.
+  std::vector<PointId> newId(hierarchy.Points().size(), -1);
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    const std::int32_t label = mesh.Labels[t];
+    if (label == NoLabel || !image.IsTissue(label))
+    {
+      continue;
+    }
+    Tet tet;
+    for (int v = 0; v < 4; ++v)
+    {
+      PointId& id = newId[mesh.Tets[t][v]];
+      if (id < 0)
+      {
+        id = static_cast<PointId>(out.Points.size());
+        out.Points.push_back(hierarchy.Points()[mesh.Tets[t][v]]);
+      }
+      tet[v] = id;
+    }
+    out.Tets.push_back(tet);
+    out.Labels.push_back(label);
+    const int level = hierarchy.Reds()[mesh.Source[t]].Level;
+    result.Levels.push_back(static_cast<std::uint8_t>(level));
+    result.DeepestLevel = std::max(result.DeepestLevel, level);
+  }
+  for (const auto& entry : fidelity)
+  {
+    result.Tissues.push_back(entry.second);
+  }
+  if (out.Tets.empty())
+  {
+    return Status::Error("no tet holds a majority of tissue voxels; use a smaller lattice size");
+  }
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return Status::Ok();
+}
+} // namespace cbc3d

@@ -1,0 +1,65 @@
+#ifndef cbc3d_Refinement_h
+#define cbc3d_Refinement_h
+
+#include "cbc3d/LabelImage.h"
+#include "cbc3d/Progress.h"
+#include "cbc3d/Status.h"
+#include "cbc3d/TetMesh.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace cbc3d
+{
+struct RefinementParams
+{
+  /// Target F in [0, 1] for both voxel ratios F1 and F2 of every tissue (the paper's F).
+  double Fidelity = 0.95;
+  /// The depth limit: a red split must leave edges at least this long (mm); 0 = the voxel
+  /// size, the cube root of the voxel volume (so refinement stops when the finest edges reach
+  /// the voxels, whatever their aspect).
+  double MinimumEdgeLength = 0.0;
+  /// Every 6-connected component of a tissue with at least this many voxels keeps tets of
+  /// that tissue (thin vessels are refined towards, or kept by relabelling, never eroded).
+  int MinimumComponentVoxels = 8;
+  /// OpenMP threads; 0 = all cores.
+  int NumberOfThreads = 0;
+  /// Stop refining before the mesh would need more memory than this (bytes); 0 = half the machine.
+  std::size_t MemoryLimitBytes = 0;
+};
+
+/// The voxel fidelity of one tissue: S1 = voxels in the tets labelled with it, S2 = its voxels,
+/// F1 = |S1 n S2| / |S1|, F2 = |S1 n S2| / |S2|; and its 6-connected components (of at least
+/// MinimumComponentVoxels voxels) in the image and how many have tets of the tissue.
+struct TissueFidelity
+{
+  std::int32_t Label = 0;
+  double F1 = 0.0;
+  double F2 = 0.0;
+  std::int64_t Components = 0;
+  std::int64_t ComponentsInMesh = 0;
+};
+
+struct RefinementResult
+{
+  std::vector<TissueFidelity> Tissues; // ascending label
+  int Passes = 0;                      // refinement passes that split tets
+  int DeepestLevel = 0;                // red level of the finest tets
+  std::vector<std::uint8_t> Levels;    // red level of every output tet
+  std::string StopReason;              // why refinement ended, in words
+};
+
+/// Red-green refinement of a tet mesh (normally the BCC lattice) driven by voxel fidelity
+/// (paper, section 3.2). Each pass labels every tet with the majority label of its voxels
+/// (sampled finer where a tet holds no voxel centre), measures F1 and F2 per tissue, and
+/// red-splits the tets that cross the boundary of a tissue below the target, until every
+/// tissue reaches it, or no tet may be split (MinimumEdgeLength), or memory would run out. A
+/// tissue component the labelling misses is refined towards, then given the tet that holds
+/// most of it. Tets labelled background are dropped. The result is conforming (no hanging
+/// vertex), every tet positively oriented, and the same for any thread count.
+Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params,
+  TetMesh& out, RefinementResult& result, const Progress& progress = nullptr);
+} // namespace cbc3d
+
+#endif

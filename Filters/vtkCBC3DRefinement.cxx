@@ -1,0 +1,137 @@
+#include "vtkCBC3DRefinement.h"
+
+#include "vtkCBC3DArrayNames.h"
+#include "vtkCBC3DConvert.h"
+
+#include "cbc3d/Refinement.h"
+
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkStringArray.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+
+vtkStandardNewMacro(vtkCBC3DRefinement);
+
+vtkCBC3DRefinement::vtkCBC3DRefinement()
+  : vtkCBC3DAlgorithm(1)
+{
+  this->SetNumberOfInputPorts(2);
+}
+
+void vtkCBC3DRefinement::SetImageConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(1, output);
+}
+
+void vtkCBC3DRefinement::SetImageData(vtkImageData* image)
+{
+  this->SetInputData(1, image);
+}
+
+int vtkCBC3DRefinement::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+    return 1;
+  }
+  return this->Superclass::FillInputPortInformation(port, info);
+}
+
+int vtkCBC3DRefinement::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkUnstructuredGrid* input = vtkUnstructuredGrid::GetData(inputVector[0]);
+  vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
+  cbc3d::TetMesh lattice;
+  std::string error;
+  if (!vtkCBC3DConvert::FromUnstructuredGrid(input, lattice, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  cbc3d::LabelImage image;
+  if (!this->ReadLabelImage(inputVector, image))
+  {
+    return 0;
+  }
+  cbc3d::RefinementParams params;
+  params.Fidelity = this->Fidelity;
+  params.MinimumEdgeLength = this->MinimumEdgeLength;
+  params.MinimumComponentVoxels = this->MinimumComponentVoxels;
+  params.NumberOfThreads = this->NumberOfThreads;
+  cbc3d::TetMesh mesh;
+  cbc3d::RefinementResult result;
+  const cbc3d::Status status =
+    cbc3d::RefineMesh(image, lattice, params, mesh, result, vtkCBC3DConvert::MakeProgress(this));
+  if (status.WasAborted())
+  {
+    output->Initialize();
+    return 1;
+  }
+  if (!status.IsOk())
+  {
+    vtkErrorMacro(<< status.GetMessage());
+    return 0;
+  }
+  vtkCBC3DConvert::ToUnstructuredGrid(mesh, output);
+
+  namespace names = vtkCBC3DArrayNames;
+  vtkNew<vtkUnsignedCharArray> levels;
+  levels->SetName(names::RefinementLevel);
+  levels->SetNumberOfValues(static_cast<vtkIdType>(result.Levels.size()));
+  std::copy(result.Levels.begin(), result.Levels.end(), levels->GetPointer(0));
+  output->GetCellData()->AddArray(levels);
+
+  vtkFieldData* fields = output->GetFieldData();
+  fields->DeepCopy(input->GetFieldData());
+  vtkNew<vtkIntArray> passes;
+  passes->SetName(names::RefinementPasses);
+  passes->InsertNextValue(result.Passes);
+  fields->AddArray(passes);
+  vtkNew<vtkStringArray> reason;
+  reason->SetName(names::RefinementStopReason);
+  reason->InsertNextValue(result.StopReason);
+  fields->AddArray(reason);
+  vtkNew<vtkIntArray> label;
+  label->SetName(names::FidelityLabel);
+  vtkNew<vtkDoubleArray> f1, f2;
+  f1->SetName(names::FidelityF1);
+  f2->SetName(names::FidelityF2);
+  vtkNew<vtkIdTypeArray> components, kept;
+  components->SetName(names::FidelityComponents);
+  kept->SetName(names::FidelityComponentsInMesh);
+  for (const cbc3d::TissueFidelity& tissue : result.Tissues)
+  {
+    label->InsertNextValue(tissue.Label);
+    f1->InsertNextValue(tissue.F1);
+    f2->InsertNextValue(tissue.F2);
+    components->InsertNextValue(tissue.Components);
+    kept->InsertNextValue(tissue.ComponentsInMesh);
+  }
+  for (vtkAbstractArray* array : { static_cast<vtkAbstractArray*>(label), static_cast<vtkAbstractArray*>(f1),
+         static_cast<vtkAbstractArray*>(f2), static_cast<vtkAbstractArray*>(components),
+         static_cast<vtkAbstractArray*>(kept) })
+  {
+    fields->AddArray(array);
+  }
+  return 1;
+}
+
+void vtkCBC3DRefinement::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Fidelity: " << this->Fidelity << "\n";
+  os << indent << "MinimumEdgeLength: " << this->MinimumEdgeLength << " mm"
+     << (this->MinimumEdgeLength == 0 ? " (the voxel size)" : "") << "\n";
+  os << indent << "MinimumComponentVoxels: " << this->MinimumComponentVoxels << "\n";
+}

@@ -1,0 +1,96 @@
+/**
+ * @class   vtkCBC3DRefinement
+ * @brief   Red-green refinement of a tet mesh driven by the voxel fidelity of every tissue.
+ *
+ * The second stage of the CBC3D method (Drakopoulos et al., IMR 2014, section 3.2). Input port
+ * 0: a tetrahedral mesh, normally the output of vtkCBC3DBCCLattice; input port 1: the label
+ * image (its label array is input array 0; background labels as in the other filters).
+ *
+ * Each pass labels every tet with the majority label of the voxel centres it holds (a tet that
+ * holds none is sampled on a finer sub-grid), measures for each tissue F1 = |S1 n S2| / |S1|
+ * and F2 = |S1 n S2| / |S2| (S1: voxels in the tissue's tets, S2: the tissue's voxels), and
+ * splits red (1:8, along the shortest inner diagonal, so BCC tets give half-size BCC tets) the
+ * tets that cross the boundary of a tissue whose F1 or F2 is below Fidelity. Green splits (one
+ * edge: 2 tets, two opposite edges: 4, three edges of a face: 4) close the mesh; any other
+ * pattern is split red, and a green tet is never split (its red parent is). Refinement ends
+ * when every tissue reaches Fidelity, or no tet may be split without making edges shorter than
+ * MinimumEdgeLength. Every 6-connected tissue component of at least MinimumComponentVoxels
+ * voxels keeps at least one tet of its tissue. Tets labelled background are dropped.
+ *
+ * Output: the refined mesh, conforming, every tet positively oriented; cell data `Label`
+ * (vtkIntArray) and `RefinementLevel` (vtkUnsignedCharArray: 0 for lattice tets, +1 per red
+ * split); field data `RefinementPasses` (vtkIntArray), `RefinementStopReason` (vtkStringArray),
+ * and per tissue in ascending label order `FidelityLabel` (vtkIntArray), `FidelityF1`,
+ * `FidelityF2` (vtkDoubleArray), `FidelityComponents`, `FidelityComponentsInMesh`
+ * (vtkIdTypeArray).
+ *
+ * @sa vtkCBC3DBCCLattice vtkCBC3DMeshQuality
+ */
+#ifndef vtkCBC3DRefinement_h
+#define vtkCBC3DRefinement_h
+
+#include "vtkCBC3DAlgorithm.h"
+#include "vtkCBC3DFiltersModule.h" // For export macro
+
+class vtkImageData;
+
+class VTKCBC3DFILTERS_EXPORT vtkCBC3DRefinement : public vtkCBC3DAlgorithm
+{
+public:
+  static vtkCBC3DRefinement* New();
+  vtkTypeMacro(vtkCBC3DRefinement, vtkCBC3DAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The label image (input port 1, required).
+   */
+  void SetImageConnection(vtkAlgorithmOutput* output);
+  void SetImageData(vtkImageData* image);
+  ///@}
+
+  ///@{
+  /**
+   * Target fidelity F in [0, 1] for F1 and F2 of every tissue (default 0.95, the paper's).
+   * 0 refines nothing: the tets are only relabelled by majority.
+   */
+  vtkSetMacro(Fidelity, double);
+  vtkGetMacro(Fidelity, double);
+  ///@}
+
+  ///@{
+  /**
+   * No split makes edges shorter than this, in mm (the depth limit). 0 (the default) uses the
+   * voxel size, the cube root of the voxel volume.
+   */
+  vtkSetMacro(MinimumEdgeLength, double);
+  vtkGetMacro(MinimumEdgeLength, double);
+  ///@}
+
+  ///@{
+  /**
+   * Tissue components (6-connected) of at least this many voxels always keep tets of their
+   * tissue (default 8).
+   */
+  vtkSetClampMacro(MinimumComponentVoxels, int, 1, VTK_INT_MAX);
+  vtkGetMacro(MinimumComponentVoxels, int);
+  ///@}
+
+protected:
+  vtkCBC3DRefinement();
+  ~vtkCBC3DRefinement() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  double Fidelity = 0.95;
+  double MinimumEdgeLength = 0.0;
+  int MinimumComponentVoxels = 8;
+
+private:
+  vtkCBC3DRefinement(const vtkCBC3DRefinement&) = delete;
+  void operator=(const vtkCBC3DRefinement&) = delete;
+};
+
+#endif

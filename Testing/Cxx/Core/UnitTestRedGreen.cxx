@@ -1,0 +1,199 @@
+#include "cbc3d/RedGreenMesh.h"
+#include "cbc3d/RedGreenTables.h"
+#include "cbc3d/TetGeometry.h"
+#include "cbc3d/TetTopology.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <map>
+#include <set>
+
+namespace
+{
+// A positive, irregular tet and its edge midpoints, in local point order.
+std::array<Eigen::Vector3d, 10> LocalPoints()
+{
+  std::array<Eigen::Vector3d, 10> p = { Eigen::Vector3d(0.1, -0.2, 0.0), Eigen::Vector3d(1.3, 0.1, 0.2),
+    Eigen::Vector3d(0.2, 1.1, -0.1), Eigen::Vector3d(0.3, 0.2, 0.9) };
+  for (int e = 0; e < 6; ++e)
+    p[4 + e] = 0.5 * (p[cbc3d::TetEdges[e][0]] + p[cbc3d::TetEdges[e][1]]);
+  return p;
+}
+
+double Volume(const std::array<Eigen::Vector3d, 10>& p, const cbc3d::LocalTet& t)
+{
+  return cbc3d::SignedVolume(p[t[0]], p[t[1]], p[t[2]], p[t[3]]);
+}
+
+// Child triangles lying on parent face f (all three points on that face), as sorted triples.
+std::set<std::array<int, 3>> TrianglesOnFace(const std::vector<cbc3d::LocalTet>& children, int f)
+{
+  std::set<int> onFace(cbc3d::TetFaces[f].begin(), cbc3d::TetFaces[f].end());
+  for (int e = 0; e < 6; ++e)
+    if (onFace.count(cbc3d::TetEdges[e][0]) && onFace.count(cbc3d::TetEdges[e][1]))
+      onFace.insert(4 + e);
+  // Insert midpoints after the corners so that the test above sees only corners.
+  std::set<std::array<int, 3>> triangles;
+  for (const auto& child : children)
+    for (const auto& face : cbc3d::TetFaces)
+    {
+      std::array<int, 3> tri = { child[face[0]], child[face[1]], child[face[2]] };
+      if (std::all_of(tri.begin(), tri.end(), [&](int v) { return onFace.count(v) > 0; }))
+      {
+        std::sort(tri.begin(), tri.end());
+        triangles.insert(tri);
+      }
+    }
+  return triangles;
+}
+
+// Which of face f's edges a mask splits, as a 3-bit pattern.
+int FacePattern(std::uint8_t mask, int f)
+{
+  int pattern = 0, bit = 0;
+  for (int e = 0; e < 6; ++e)
+  {
+    const auto& face = cbc3d::TetFaces[f];
+    const bool onFace = std::count(face.begin(), face.end(), cbc3d::TetEdges[e][0]) &&
+      std::count(face.begin(), face.end(), cbc3d::TetEdges[e][1]);
+    if (onFace)
+      pattern |= ((mask >> e) & 1) << bit++;
+  }
+  return pattern;
+}
+} // namespace
+
+TEST(RedGreenTables, EveryMaskClosesGreenOrUpgradesToRed)
+{
+  const auto p = LocalPoints();
+  const double parent = Volume(p, { 0, 1, 2, 3 });
+  ASSERT_GT(parent, 0.0);
+  int green = 0;
+  for (int mask = 0; mask < 64; ++mask)
+  {
+    const auto* closure = cbc3d::GreenClosure(static_cast<std::uint8_t>(mask));
+    const int splits = __builtin_popcount(mask);
+    if (!closure)
+    {
+      continue;
+    }
+    ++green;
+    double sum = 0.0;
+    std::set<int> used;
+    for (const auto& child : *closure)
+    {
+      EXPECT_GT(Volume(p, child), 1e-6) << "mask " << mask;
+      sum += Volume(p, child);
+      used.insert(child.begin(), child.end());
+    }
+    EXPECT_NEAR(sum, parent, 1e-12) << "mask " << mask;
+    // Every split edge's midpoint is used, no other midpoint is.
+    for (int e = 0; e < 6; ++e)
+      EXPECT_EQ(used.count(4 + e) > 0, ((mask >> e) & 1) == 1) << "mask " << mask << " edge " << e;
+    EXPECT_EQ(closure->size(), splits == 0 ? 1u : splits == 1 ? 2u : 4u) << "mask " << mask;
+  }
+  // None, 6 single edges, 3 opposite pairs, 4 faces.
+  EXPECT_EQ(green, 14);
+}
+
+TEST(RedGreenTables, RedChildrenFillTheParentAndHaveEqualVolume)
+{
+  const auto p = LocalPoints();
+  const double parent = Volume(p, { 0, 1, 2, 3 });
+  for (int d = 0; d < 3; ++d)
+  {
+    double sum = 0.0;
+    for (const auto& child : cbc3d::RedChildren(d))
+    {
+      EXPECT_NEAR(Volume(p, child), parent / 8.0, 1e-12);
+      sum += Volume(p, child);
+    }
+    EXPECT_NEAR(sum, parent, 1e-12);
+  }
+}
+
+TEST(RedGreenTables, AFaceIsSplitTheSameWayWhateverTheRestOfTheTet)
+{
+  // For each face, every split (green or red) that splits the same edges of that face puts the
+  // same triangles on it, so the two tets sharing the face always agree.
+  std::map<std::pair<int, int>, std::set<std::array<int, 3>>> seen; // (face, pattern) -> triangles
+  auto record = [&](std::uint8_t mask, const std::vector<cbc3d::LocalTet>& children) {
+    for (int f = 0; f < 4; ++f)
+    {
+      const auto triangles = TrianglesOnFace(children, f);
+      const auto key = std::make_pair(f, FacePattern(mask, f));
+      const auto found = seen.emplace(key, triangles);
+      EXPECT_EQ(found.first->second, triangles) << "mask " << int(mask) << " face " << f;
+    }
+  };
+  for (int mask = 0; mask < 64; ++mask)
+    if (const auto* closure = cbc3d::GreenClosure(static_cast<std::uint8_t>(mask)))
+      record(static_cast<std::uint8_t>(mask), *closure);
+  for (int d = 0; d < 3; ++d)
+  {
+    const auto& red = cbc3d::RedChildren(d);
+    record(63, std::vector<cbc3d::LocalTet>(red.begin(), red.end()));
+  }
+}
+
+TEST(RedGreenMesh, RefinedBCCTetsKeepTheirAnglesAndTheMeshConforms)
+{
+  // Two BCC tets sharing a face; split one of them twice (a child of it too): the closure
+  // must split the other as needed and leave no hanging point.
+  cbc3d::TetMesh roots;
+  roots.Points = { { 0.5, 0.5, 0.5 }, { 1.5, 0.5, 0.5 }, { 1, 0, 0 }, { 1, 1, 0 }, { 1, 1, 1 } };
+  roots.Tets = { { 0, 1, 2, 3 }, { 0, 1, 3, 4 } };
+  for (auto& tet : roots.Tets)
+  {
+    const auto& p = roots.Points;
+    if (cbc3d::SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) < 0)
+      std::swap(tet[2], tet[3]);
+  }
+  roots.Labels = { 1, 1 };
+  cbc3d::RedGreenMesh mesh(roots);
+  mesh.SplitRed(0);
+  mesh.SplitRed(2); // the first child of tet 0
+  mesh.Close();
+  std::vector<cbc3d::Tet> tets;
+  std::vector<std::int64_t> source;
+  mesh.BuildConforming(tets, source);
+  const auto& p = mesh.Points();
+  double volume = 0.0;
+  std::map<std::array<cbc3d::PointId, 3>, int> faces;
+  for (const auto& tet : tets)
+  {
+    const double v = cbc3d::SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]);
+    ASSERT_GT(v, 0.0);
+    volume += v;
+    auto angles = cbc3d::DihedralAngles(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]);
+    for (const double a : angles)
+    {
+      EXPECT_GE(a * cbc3d::RadiansToDegrees, 30.0 - 1e-9);
+      EXPECT_LE(a * cbc3d::RadiansToDegrees, 116.5651 + 1e-4); // arccos(-1/sqrt 5)
+    }
+    for (const auto& f : cbc3d::TetFaces)
+    {
+      std::array<cbc3d::PointId, 3> key = { tet[f[0]], tet[f[1]], tet[f[2]] };
+      std::sort(key.begin(), key.end());
+      ++faces[key];
+    }
+  }
+  const double expected = 2.0 * cbc3d::SignedVolume(roots.Points[0], roots.Points[1], roots.Points[2], roots.Points[3]);
+  EXPECT_NEAR(volume, expected, 1e-12);
+  // Every face is used once (boundary) or twice; no point lies inside another tet's edge.
+  for (const auto& entry : faces)
+    EXPECT_LE(entry.second, 2);
+  for (std::size_t q = 0; q < p.size(); ++q)
+    for (const auto& tet : tets)
+      for (const auto& e : cbc3d::TetEdges)
+      {
+        const Eigen::Vector3d a = p[tet[e[0]]], b = p[tet[e[1]]];
+        if (std::find(tet.begin(), tet.end(), cbc3d::PointId(q)) != tet.end())
+          continue;
+        const double t = (p[q] - a).dot(b - a) / (b - a).squaredNorm();
+        const bool onEdge = t > 1e-9 && t < 1 - 1e-9 && (a + t * (b - a) - p[q]).norm() < 1e-9;
+        EXPECT_FALSE(onEdge) << "point " << q << " hangs on an edge";
+      }
+}
