@@ -1,0 +1,206 @@
+#include "cbc3d/BCCLattice.h"
+#include "cbc3d/Refinement.h"
+#include "cbc3d/TetGeometry.h"
+#include "cbc3d/TetTopology.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+namespace
+{
+// A ball of label 1 (radius 7 mm) and a thin straight tube of label 2, one voxel across and 12
+// voxels long, in a 28^3 image of 1 mm voxels.
+cbc3d::LabelImage BallAndTube()
+{
+  cbc3d::LabelImage image;
+  image.Dimensions = { 28, 28, 28 };
+  image.Labels.assign(28 * 28 * 28, 0);
+  for (int k = 0; k < 28; ++k)
+    for (int j = 0; j < 28; ++j)
+      for (int i = 0; i < 28; ++i)
+        if ((Eigen::Vector3d(i, j, k) - Eigen::Vector3d(11, 11, 11)).norm() <= 7.0)
+          image.Labels[image.VoxelIndex(i, j, k)] = 1;
+  for (int i = 8; i < 20; ++i)
+    image.Labels[image.VoxelIndex(i, 23, 23)] = 2;
+  return image;
+}
+
+cbc3d::TetMesh Lattice(const cbc3d::LabelImage& image, double edge)
+{
+  cbc3d::LatticeParams params;
+  params.EdgeLength = edge;
+  cbc3d::TetMesh lattice;
+  EXPECT_TRUE(cbc3d::BuildBCCLattice(image, params, lattice).IsOk());
+  return lattice;
+}
+
+// Exact key of a point, so that a midpoint computed as 0.5 (a + b) finds the vertex made the
+// same way.
+std::array<std::uint64_t, 3> Key(const Eigen::Vector3d& p)
+{
+  std::array<std::uint64_t, 3> key;
+  std::memcpy(key.data(), p.data(), sizeof(key));
+  return key;
+}
+
+struct KeyHash
+{
+  std::size_t operator()(const std::array<std::uint64_t, 3>& k) const
+  {
+    return std::hash<std::uint64_t>()(k[0] * 31 + k[1] * 17 + k[2]);
+  }
+};
+
+// Conforming: every face used by at most two tets, and no mesh vertex at the midpoint of an
+// edge (in red-green refinement every new point is an edge midpoint, so this finds every
+// hanging vertex).
+void ExpectConforming(const cbc3d::TetMesh& mesh)
+{
+  std::map<std::array<cbc3d::PointId, 3>, int> faces;
+  std::unordered_map<std::array<std::uint64_t, 3>, cbc3d::PointId, KeyHash> vertexAt;
+  for (std::size_t p = 0; p < mesh.Points.size(); ++p)
+    vertexAt[Key(mesh.Points[p])] = static_cast<cbc3d::PointId>(p);
+  std::int64_t hanging = 0;
+  for (const cbc3d::Tet& tet : mesh.Tets)
+  {
+    for (const auto& f : cbc3d::TetFaces)
+    {
+      std::array<cbc3d::PointId, 3> key = { tet[f[0]], tet[f[1]], tet[f[2]] };
+      std::sort(key.begin(), key.end());
+      ++faces[key];
+    }
+    for (const auto& e : cbc3d::TetEdges)
+      hanging += vertexAt.count(Key(0.5 * (mesh.Points[tet[e[0]]] + mesh.Points[tet[e[1]]]))) ? 1 : 0;
+  }
+  EXPECT_EQ(hanging, 0);
+  for (const auto& entry : faces)
+    ASSERT_LE(entry.second, 2);
+}
+
+void ExpectRedGreenAngles(const cbc3d::TetMesh& mesh)
+{
+  const double largest = std::acos(-1.0 / std::sqrt(5.0)) * cbc3d::RadiansToDegrees; // 116.565
+  for (const cbc3d::Tet& tet : mesh.Tets)
+  {
+    const auto& p = mesh.Points;
+    for (const double a : cbc3d::DihedralAngles(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]))
+    {
+      ASSERT_GE(a * cbc3d::RadiansToDegrees, 30.0 - 1e-6);
+      ASSERT_LE(a * cbc3d::RadiansToDegrees, largest + 1e-6);
+    }
+  }
+}
+} // namespace
+
+TEST(Refinement, ReachesTheFidelityWithRedGreenAnglesAndConforms)
+{
+  const cbc3d::LabelImage image = BallAndTube();
+  cbc3d::RefinementParams params;
+  params.Fidelity = 0.95;
+  params.MinimumEdgeLength = 0.5;
+  cbc3d::TetMesh mesh;
+  cbc3d::RefinementResult result;
+  ASSERT_TRUE(cbc3d::RefineMesh(image, Lattice(image, 6.0), params, mesh, result).IsOk());
+  EXPECT_TRUE(cbc3d::ValidateTetMesh(mesh).IsOk());
+  EXPECT_GT(result.Passes, 0);
+  EXPECT_GT(result.DeepestLevel, 0);
+  ASSERT_EQ(result.Levels.size(), mesh.Tets.size());
+  ExpectRedGreenAngles(mesh);
+  ExpectConforming(mesh);
+  ASSERT_EQ(result.Tissues.size(), 2u);
+  const cbc3d::TissueFidelity& ball = result.Tissues[0];
+  EXPECT_EQ(ball.Label, 1);
+  EXPECT_GE(ball.F1, 0.95);
+  EXPECT_GE(ball.F2, 0.95);
+  // The tube is one 12-voxel component: it keeps tets of its own label.
+  const cbc3d::TissueFidelity& tube = result.Tissues[1];
+  EXPECT_EQ(tube.Label, 2);
+  EXPECT_EQ(tube.Components, 1);
+  EXPECT_EQ(tube.ComponentsInMesh, 1);
+  EXPECT_GT(std::count(mesh.Labels.begin(), mesh.Labels.end(), 2), 0);
+}
+
+TEST(Refinement, ThinComponentSurvivesAtTheDepthLimit)
+{
+  // No split allowed: the tube is far too thin for any lattice tet's majority, so it must be
+  // kept by giving it the tet that holds most of it.
+  const cbc3d::LabelImage image = BallAndTube();
+  cbc3d::RefinementParams params;
+  params.MinimumEdgeLength = 100.0;
+  cbc3d::TetMesh mesh;
+  cbc3d::RefinementResult result;
+  ASSERT_TRUE(cbc3d::RefineMesh(image, Lattice(image, 6.0), params, mesh, result).IsOk());
+  EXPECT_EQ(result.Passes, 0);
+  EXPECT_NE(result.StopReason.find("minimum edge length"), std::string::npos) << result.StopReason;
+  EXPECT_EQ(result.Tissues[1].ComponentsInMesh, 1);
+  EXPECT_GT(std::count(mesh.Labels.begin(), mesh.Labels.end(), 2), 0);
+  ExpectConforming(mesh);
+}
+
+TEST(Refinement, FidelityZeroRelabelsWithoutSplitting)
+{
+  // A box of 8 x 8 x 8 voxels meshed with a lattice of 1 mm cubes: no split, every tet at
+  // level 0, and majority labelling keeps about the box's volume.
+  cbc3d::LabelImage image;
+  image.Dimensions = { 16, 16, 16 };
+  image.Labels.assign(16 * 16 * 16, 0);
+  for (int k = 4; k < 12; ++k)
+    for (int j = 4; j < 12; ++j)
+      for (int i = 4; i < 12; ++i)
+        image.Labels[image.VoxelIndex(i, j, k)] = 3;
+  cbc3d::RefinementParams params;
+  params.Fidelity = 0.0;
+  cbc3d::TetMesh mesh;
+  cbc3d::RefinementResult result;
+  ASSERT_TRUE(cbc3d::RefineMesh(image, Lattice(image, 1.0), params, mesh, result).IsOk());
+  EXPECT_EQ(result.Passes, 0);
+  EXPECT_EQ(result.DeepestLevel, 0);
+  ASSERT_EQ(result.Tissues.size(), 1u);
+  EXPECT_GT(result.Tissues[0].F1, 0.8);
+  EXPECT_GT(result.Tissues[0].F2, 0.99);
+  double volume = 0.0;
+  for (const auto& tet : mesh.Tets)
+    volume += cbc3d::SignedVolume(mesh.Points[tet[0]], mesh.Points[tet[1]], mesh.Points[tet[2]], mesh.Points[tet[3]]);
+  EXPECT_NEAR(volume, 512.0, 0.25 * 512.0);
+}
+
+TEST(Refinement, SameMeshForOneAndTwoThreads)
+{
+  const cbc3d::LabelImage image = BallAndTube();
+  const cbc3d::TetMesh lattice = Lattice(image, 6.0);
+  cbc3d::RefinementParams params;
+  params.MinimumEdgeLength = 0.8;
+  cbc3d::TetMesh one, two;
+  cbc3d::RefinementResult r1, r2;
+  params.NumberOfThreads = 1;
+  ASSERT_TRUE(cbc3d::RefineMesh(image, lattice, params, one, r1).IsOk());
+  params.NumberOfThreads = 2;
+  ASSERT_TRUE(cbc3d::RefineMesh(image, lattice, params, two, r2).IsOk());
+  EXPECT_EQ(one.Tets, two.Tets);
+  EXPECT_EQ(one.Labels, two.Labels);
+  EXPECT_EQ(one.Points.size(), two.Points.size());
+  EXPECT_EQ(r1.Tissues[0].F1, r2.Tissues[0].F1);
+}
+
+TEST(Refinement, RefusesBadParametersAndStopsWhenAsked)
+{
+  const cbc3d::LabelImage image = BallAndTube();
+  const cbc3d::TetMesh lattice = Lattice(image, 6.0);
+  cbc3d::TetMesh mesh;
+  cbc3d::RefinementResult result;
+  cbc3d::RefinementParams params;
+  params.Fidelity = 1.5;
+  EXPECT_FALSE(cbc3d::RefineMesh(image, lattice, params, mesh, result).IsOk());
+  params.Fidelity = 0.95;
+  params.MinimumEdgeLength = -1.0;
+  EXPECT_FALSE(cbc3d::RefineMesh(image, lattice, params, mesh, result).IsOk());
+  params.MinimumEdgeLength = 0.0;
+  EXPECT_FALSE(cbc3d::RefineMesh(image, cbc3d::TetMesh(), params, mesh, result).IsOk());
+  EXPECT_TRUE(cbc3d::RefineMesh(image, lattice, params, mesh, result, [](double) { return false; }).WasAborted());
+}
