@@ -88,4 +88,20 @@ check(abs(fields.GetArray("MinDihedralAngle").GetValue(0) - 60) < 1e-6, "quality
 check(abs(fields.GetArray("MaxDihedralAngle").GetValue(0) - 90) < 1e-6, "quality proxy: max 90")
 check([fields.GetArray("TissueLabel").GetValue(i) for i in range(3)] == [1, 2, 3], "quality proxy: tissues 1 2 3")
 
+# Refinement through its proxy: a finer, conforming mesh of the same tissues.
+coarse = CBC3DBCCLattice(Input=nifti)
+coarse.EdgeLength = 6.0
+coarse.UpdatePipeline()
+mesh = servermanager.Fetch(coarse)
+refined = CBC3DRefinement(Input=coarse, Image=nifti)
+refined.Fidelity = 0.99
+refined.UpdatePipeline()
+fine = servermanager.Fetch(refined)
+fields = fine.GetFieldData()
+check(fine.GetNumberOfCells() > mesh.GetNumberOfCells(), "refinement adds tets (%d -> %d)" % (mesh.GetNumberOfCells(), fine.GetNumberOfCells()))
+check(fine.GetCellData().GetArray("RefinementLevel").GetRange()[1] >= 1, "some tets are refined")
+check([fields.GetArray("FidelityLabel").GetValue(i) for i in range(3)] == [1, 2, 3], "fidelity per tissue 1 2 3")
+check(all(0 < fields.GetArray(n).GetValue(i) <= 1 for n in ("FidelityF1", "FidelityF2") for i in range(3)), "F1, F2 in (0, 1]")
+check("Fidelity: 0.99" in str(refined.GetClientSideObject()), "PrintSelf shows Fidelity")
+
 check.finish()

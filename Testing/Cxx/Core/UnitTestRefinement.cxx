@@ -2,6 +2,9 @@
 #include "cbc3d/Refinement.h"
 #include "cbc3d/TetGeometry.h"
 #include "cbc3d/TetTopology.h"
+#include "cbc3d/TissueComponents.h"
+
+#include "TestImages.h"
 
 #include <gtest/gtest.h>
 
@@ -203,4 +206,23 @@ TEST(Refinement, RefusesBadParametersAndStopsWhenAsked)
   params.MinimumEdgeLength = 0.0;
   EXPECT_FALSE(cbc3d::RefineMesh(image, cbc3d::TetMesh(), params, mesh, result).IsOk());
   EXPECT_TRUE(cbc3d::RefineMesh(image, lattice, params, mesh, result, [](double) { return false; }).WasAborted());
+}
+
+TEST(TissueComponents, FaceConnectedOnly)
+{
+  cbc3d::LabelImage image = Cube(6, 0);
+  // Two voxels of label 1 touching only along an edge: two components; a 2x2x1 plate of label
+  // 1 elsewhere: one; a voxel of label 5 face-adjacent to the plate: its own component.
+  image.Labels[image.VoxelIndex(0, 0, 0)] = 1;
+  image.Labels[image.VoxelIndex(1, 1, 0)] = 1;
+  for (int j = 3; j < 5; ++j)
+    for (int i = 3; i < 5; ++i)
+      image.Labels[image.VoxelIndex(i, j, 4)] = 1;
+  image.Labels[image.VoxelIndex(3, 3, 5)] = 5;
+  const cbc3d::TissueComponents components = cbc3d::FindTissueComponents(image);
+  ASSERT_EQ(components.Label.size(), 4u);
+  EXPECT_EQ(components.Label, (std::vector<std::int32_t>{ 1, 1, 1, 5 }));
+  EXPECT_EQ(components.Size, (std::vector<std::int64_t>{ 1, 1, 4, 1 }));
+  EXPECT_EQ(components.ComponentOfVoxel[image.VoxelIndex(4, 4, 4)], 2);
+  EXPECT_EQ(components.ComponentOfVoxel[image.VoxelIndex(5, 5, 5)], -1);
 }
