@@ -13,13 +13,18 @@ root = os.path.dirname(here)
 shared = os.path.join(root, "..", "shared", "data")
 
 
-def picture(image_path, edge, out_name, background=None, view_up=(0, 0, 1), direction=(1, -1, 0.6)):
-    """The lattice clipped by a plane through the image centre, coloured by Label."""
+def picture(image_path, edge, out_name, background=None, view_up=(0, 0, 1), direction=(1, -1, 0.6),
+            refine=False, color_by="Label"):
+    """The lattice (or the refined mesh) clipped by a plane through its centre, coloured by Label."""
     image = OpenDataFile(image_path)
     lattice = CBC3DBCCLattice(Input=image)
     lattice.EdgeLength = edge
     if background is not None:
         lattice.BackgroundLabels = background
+    if refine:
+        lattice = CBC3DRefinement(Input=lattice, Image=image)
+        if background is not None:
+            lattice.BackgroundLabels = background
     lattice.UpdatePipeline()
     bounds = lattice.GetDataInformation().GetBounds()
     centre = [(bounds[2 * a] + bounds[2 * a + 1]) / 2 for a in range(3)]
@@ -36,17 +41,19 @@ def picture(image_path, edge, out_name, background=None, view_up=(0, 0, 1), dire
         view.UseColorPaletteForBackground = 0
     except AttributeError:
         pass
+    for name in ("Label", "RefinementLevel"):  # bars of earlier pictures
+        HideScalarBarIfNotNeeded(GetColorTransferFunction(name), view)
     display = Show(clip, view)
     display.SetRepresentationType("Surface With Edges")
-    ColorBy(display, ("CELLS", "Label"))
+    ColorBy(display, ("CELLS", color_by))
     display.RescaleTransferFunctionToDataRange(True)
-    lut = GetColorTransferFunction("Label")
+    lut = GetColorTransferFunction(color_by)
     lut.ApplyPreset("Rainbow Uniform", True)
-    label_range = lattice.CellData["Label"].GetRange()
+    label_range = lattice.CellData[color_by].GetRange()
     display.SetScalarBarVisibility(view, label_range[0] != label_range[1])
     bar = GetScalarBar(lut, view)
     bar.Visibility = int(label_range[0] != label_range[1])
-    bar.Title = "Label"
+    bar.Title = color_by
     bar.ComponentTitle = ""
     bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
     bar.TitleFontSize = bar.LabelFontSize = 20
@@ -70,5 +77,8 @@ picture(os.path.join(root, "Data", "nested_shells.vti"), 2.0, "lattice-nested-sh
 if os.path.isdir(shared):
     picture(os.path.join(shared, "cbc3d-brain.nii.gz"), 8.0, "lattice-brain.png", direction=(-1, -1, 0.6))
     picture(os.path.join(shared, "nipype-tissue-labels.nii.gz"), 6.0, "lattice-three-tissues.png")
+    picture(os.path.join(shared, "nipype-tissue-labels.nii.gz"), 8.0, "refined-three-tissues.png", refine=True)
+    picture(os.path.join(shared, "cbc3d-nidus.nii.gz"), 8.0, "refined-nidus.png", refine=True, direction=(1, -1, 1.2),
+            color_by="RefinementLevel")
 else:
     print("no ../shared/data: real-image pictures skipped")
