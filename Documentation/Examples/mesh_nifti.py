@@ -9,7 +9,9 @@ plugin's NIfTI reader (world frame, RAS millimetres), meshed with the BCC lattic
 measured with the quality filter against the image, and the mesh is written to OUT.vtu
 (VTK XML, inline binary, zlib). The quality figures are printed. With SCREENSHOT.png, the mesh
 is also clipped through its centre (whole tets: a crinkle clip), coloured by tissue label and
-rendered to that file; rendering needs a display (on a server: `xvfb-run -a pvpython ...`).
+rendered to that file; rendering needs a display (on a server:
+`xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" pvpython ...`; without -noreset, Xvfb may
+reset just as the render window connects and pvpython aborts with "bad X server connection").
 Exits 1 with a message when the plugin, the image or the meshing fails.
 """
 import argparse

@@ -2,7 +2,7 @@
 """TestParaViewGui: the real ParaView GUI loads the CBC3D plugin and renders a lattice.
 
 Runs (system Python, standard library only)
-    xvfb-run -a -s "-screen 0 1280x1024x24" paraview --dr --script=gui_script.py --exit
+    xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" paraview --dr --script=gui_script.py --exit
 with a time limit, then judges only the exit code and the picture (the GUI may print
 warnings): the script's marker file says it ran to the end with a non-empty lattice, and the
 PNG, decoded here with zlib and struct, is 800 x 600 with many colours and no single colour
@@ -100,7 +100,8 @@ def main():
     screenshot = os.path.join(work, "gui.png")
     environment = dict(os.environ, CBC3D_GUI_SCREENSHOT=screenshot)
     environment.setdefault("XDG_RUNTIME_DIR", tempfile.mkdtemp(prefix="runtime-", dir=work))
-    command = [xvfb_run, "-a", "-s", "-screen 0 1280x1024x24", paraview, "--dr",
+    # -noreset: see Testing/Python/TestExampleScript.py (Xvfb resets when a client leaves).
+    command = [xvfb_run, "-a", "-s", "-screen 0 1280x1024x24 -noreset", paraview, "--dr",
                "--script=" + os.path.join(here, "gui_script.py"), "--exit"]
     print(" ".join(command))
     try:

@@ -1,5 +1,5 @@
 # Run by the ParaView GUI (not pvpython) from Testing/Gui/TestParaViewGui.py:
-#   xvfb-run -a -s "-screen 0 1280x1024x24" paraview --dr --script=gui_script.py --exit
+#   xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" paraview --dr --script=gui_script.py --exit
 # Loads the CBC3D plugin, opens Data/nested_shells.vti, applies the BCC lattice (EdgeLength 2),
 # clips it through the centre keeping whole tets (crinkle), colours it by Label in the GUI's
 # render view and saves a screenshot. Paths come from the environment: CBC3D_PLUGIN,

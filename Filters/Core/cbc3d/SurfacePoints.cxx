@@ -1,83 +1,41 @@
 #include "cbc3d/SurfacePoints.h"
 
+#include "cbc3d/MeshFaces.h"
 #include "cbc3d/Parallel.h"
-#include "cbc3d/TetTopology.h"
-
-#include <algorithm>
-#include <array>
-#include <tuple>
 
 namespace cbc3d
 {
 std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(const TetMesh& mesh)
 {
-  // Bucket every tet face by its smallest vertex (a counting sort, linear time), then find
-  // within each small bucket the faces a tissue uses once.
-  struct Face
-  {
-    PointId B, C; // the other two vertices, B < C
-    std::int32_t Label;
-    bool operator<(const Face& o) const { return std::tie(B, C, Label) < std::tie(o.B, o.C, o.Label); }
-  };
-  const std::size_t pointCount = mesh.Points.size();
-  std::vector<std::size_t> start(pointCount + 1, 0);
-  auto sortedFace = [&](std::size_t t, int f) {
-    std::array<PointId, 3> ids = { mesh.Tets[t][TetFaces[f][0]], mesh.Tets[t][TetFaces[f][1]],
-      mesh.Tets[t][TetFaces[f][2]] };
-    std::sort(ids.begin(), ids.end());
-    return ids;
-  };
-  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
-  {
-    for (int f = 0; f < 4; ++f)
-    {
-      ++start[sortedFace(t, f)[0] + 1];
-    }
-  }
-  for (std::size_t p = 0; p < pointCount; ++p)
-  {
-    start[p + 1] += start[p];
-  }
-  std::vector<Face> faces(start[pointCount]);
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
-  {
-    for (int f = 0; f < 4; ++f)
-    {
-      const auto ids = sortedFace(t, f);
-      faces[fill[ids[0]]++] = Face{ ids[1], ids[2], mesh.Labels[t] };
-    }
-  }
-
+  // A face belongs to exactly one tet of a tissue when it is on the mesh boundary, or between
+  // tets of two different tissues (an interface, on the surface of both).
   std::map<std::int32_t, std::vector<std::uint8_t>> onSurface;
-  for (std::size_t a = 0; a < pointCount; ++a)
-  {
-    const auto first = faces.begin() + start[a];
-    const auto last = faces.begin() + start[a + 1];
-    std::sort(first, last);
-    for (auto it = first; it != last;)
+  auto mark = [&](std::int32_t label, const MeshFace& face) {
+    auto& marks = onSurface[label];
+    marks.resize(mesh.Points.size(), 0);
+    for (const PointId p : face.Points)
     {
-      // A run of one face and one label: used once means a surface face of that tissue.
-      auto next = it + 1;
-      while (next != last && next->B == it->B && next->C == it->C && next->Label == it->Label)
-      {
-        ++next;
-      }
-      if (next - it == 1)
-      {
-        auto& marks = onSurface[it->Label];
-        marks.resize(pointCount, 0);
-        marks[a] = marks[it->B] = marks[it->C] = 1;
-      }
-      it = next;
+      marks[p] = 1;
+    }
+  };
+  for (const MeshFace& face : FindMeshFaces(mesh))
+  {
+    const std::int32_t first = mesh.Labels[face.Tets[0]];
+    if (face.TetCount == 1)
+    {
+      mark(first, face);
+    }
+    else if (face.TetCount == 2 && mesh.Labels[face.Tets[1]] != first)
+    {
+      mark(first, face);
+      mark(mesh.Labels[face.Tets[1]], face);
     }
   }
-
   std::map<std::int32_t, std::vector<PointId>> result;
   for (const auto& [label, marks] : onSurface)
   {
     auto& ids = result[label];
-    for (std::size_t p = 0; p < pointCount; ++p)
+    for (std::size_t p = 0; p < marks.size(); ++p)
     {
       if (marks[p])
       {

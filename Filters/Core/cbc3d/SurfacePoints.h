@@ -15,8 +15,8 @@ namespace cbc3d
 /// The point sets between which the paper measures a tissue's Hausdorff distance.
 
 /// Per tissue label, the ids of the mesh vertices on that tissue's surface: the vertices of the
-/// faces that belong to exactly one tet of the tissue (outer boundary and interfaces alike).
-/// Ids are ascending.
+/// faces that belong to exactly one tet of the tissue (outer boundary and interfaces alike; the
+/// mesh must conform). Ids are ascending.
 std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(const TetMesh& mesh);
 
 /// Per tissue label, the world-space centres of the tissue's boundary voxels: voxels of the

@@ -1,0 +1,93 @@
+#include "cbc3d/BoundaryTargets.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+namespace cbc3d
+{
+namespace
+{
+// Neighbour offsets that a pattern blocks once a voxel is taken.
+std::vector<std::array<int, 3>> BlockedOffsets(TargetPattern pattern)
+{
+  std::vector<std::array<int, 3>> offsets;
+  for (int dk = -1; dk <= 1; ++dk)
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di)
+      {
+        const int order = std::abs(di) + std::abs(dj) + std::abs(dk); // 1 face, 2 edge, 3 vertex
+        const bool blocked = order > 0 &&
+          ((pattern == TargetPattern::Face && order == 1) || (pattern == TargetPattern::Edge && order <= 2) ||
+            pattern == TargetPattern::Vertex);
+        if (blocked)
+        {
+          offsets.push_back({ di, dj, dk });
+        }
+      }
+  return offsets;
+}
+} // namespace
+
+std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetPattern pattern)
+{
+  const auto& d = image.Dimensions;
+  const auto blocked = BlockedOffsets(pattern);
+  std::vector<char> allowed(image.Labels.size(), 1);
+  std::set<LabelSet> earlierTissues;
+  std::vector<BoundaryTarget> targets;
+  auto labelOf = [&](int i, int j, int k) {
+    if (i < 0 || j < 0 || k < 0 || i >= d[0] || j >= d[1] || k >= d[2])
+    {
+      return OutsideLabel;
+    }
+    const std::int32_t label = image.LabelAt(i, j, k);
+    return image.IsTissue(label) ? label : OutsideLabel;
+  };
+  for (const std::int32_t tissue : image.TissueLabels())
+  {
+    std::set<LabelSet> thisTissue;
+    for (int k = 0; k < d[2]; ++k)
+      for (int j = 0; j < d[1]; ++j)
+        for (int i = 0; i < d[0]; ++i)
+        {
+          const std::int64_t voxel = image.VoxelIndex(i, j, k);
+          if (image.Labels[voxel] != tissue || !allowed[voxel])
+          {
+            continue;
+          }
+          LabelSet labels = { tissue };
+          const int faces[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
+          for (const auto& f : faces)
+          {
+            const std::int32_t other = labelOf(i + f[0], j + f[1], k + f[2]);
+            if (std::find(labels.begin(), labels.end(), other) == labels.end())
+            {
+              labels.push_back(other);
+            }
+          }
+          if (labels.size() == 1)
+          {
+            continue; // not a boundary voxel
+          }
+          std::sort(labels.begin(), labels.end());
+          if (earlierTissues.count(labels))
+          {
+            continue; // this interface was sampled from an earlier tissue's side
+          }
+          thisTissue.insert(labels);
+          targets.push_back({ image.IndexToWorld(Eigen::Vector3d(i, j, k)), labels });
+          for (const auto& o : blocked)
+          {
+            const int ni = i + o[0], nj = j + o[1], nk = k + o[2];
+            if (ni >= 0 && nj >= 0 && nk >= 0 && ni < d[0] && nj < d[1] && nk < d[2])
+            {
+              allowed[image.VoxelIndex(ni, nj, nk)] = 0;
+            }
+          }
+        }
+    earlierTissues.insert(thisTissue.begin(), thisTissue.end());
+  }
+  return targets;
+}
+} // namespace cbc3d

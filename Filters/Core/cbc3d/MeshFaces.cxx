@@ -1,0 +1,67 @@
+#include "cbc3d/MeshFaces.h"
+
+#include "cbc3d/TetTopology.h"
+
+#include <algorithm>
+#include <tuple>
+
+namespace cbc3d
+{
+std::vector<MeshFace> FindMeshFaces(const TetMesh& mesh)
+{
+  struct Entry
+  {
+    PointId B, C;
+    std::int64_t Tet;
+    bool operator<(const Entry& o) const { return std::tie(B, C, Tet) < std::tie(o.B, o.C, o.Tet); }
+  };
+  auto sortedFace = [&mesh](std::size_t t, int f) {
+    std::array<PointId, 3> ids = { mesh.Tets[t][TetFaces[f][0]], mesh.Tets[t][TetFaces[f][1]],
+      mesh.Tets[t][TetFaces[f][2]] };
+    std::sort(ids.begin(), ids.end());
+    return ids;
+  };
+  // Counting sort of the 4 faces of every tet by their smallest vertex.
+  const std::size_t pointCount = mesh.Points.size();
+  std::vector<std::size_t> start(pointCount + 1, 0);
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+    for (int f = 0; f < 4; ++f)
+      ++start[sortedFace(t, f)[0] + 1];
+  for (std::size_t p = 0; p < pointCount; ++p)
+    start[p + 1] += start[p];
+  std::vector<Entry> entries(start[pointCount]);
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+    for (int f = 0; f < 4; ++f)
+    {
+      const auto ids = sortedFace(t, f);
+      entries[fill[ids[0]]++] = Entry{ ids[1], ids[2], static_cast<std::int64_t>(t) };
+    }
+
+  std::vector<MeshFace> faces;
+  faces.reserve(entries.size() / 2 + 1);
+  for (std::size_t a = 0; a < pointCount; ++a)
+  {
+    const auto first = entries.begin() + start[a];
+    const auto last = entries.begin() + start[a + 1];
+    std::sort(first, last);
+    for (auto it = first; it != last;)
+    {
+      MeshFace face;
+      face.Points = { static_cast<PointId>(a), it->B, it->C };
+      auto next = it;
+      for (; next != last && next->B == it->B && next->C == it->C; ++next)
+      {
+        if (face.TetCount < 2)
+        {
+          face.Tets[face.TetCount] = next->Tet;
+        }
+        ++face.TetCount;
+      }
+      faces.push_back(face);
+      it = next;
+    }
+  }
+  return faces;
+}
+} // namespace cbc3d

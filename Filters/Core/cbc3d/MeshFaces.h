@@ -1,0 +1,25 @@
+#ifndef cbc3d_MeshFaces_h
+#define cbc3d_MeshFaces_h
+
+#include "cbc3d/TetMesh.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace cbc3d
+{
+/// A face of a conforming tet mesh and the one or two tets that use it.
+struct MeshFace
+{
+  std::array<PointId, 3> Points; // ascending
+  std::array<std::int64_t, 2> Tets = { -1, -1 };
+  int TetCount = 0; // 1: on the mesh boundary; 2: inside; more: the mesh does not conform
+};
+
+/// Every distinct face of the mesh (grouped in linear time by bucketing on the smallest
+/// vertex), in ascending vertex order.
+std::vector<MeshFace> FindMeshFaces(const TetMesh& mesh);
+} // namespace cbc3d
+
+#endif
