@@ -11,6 +11,10 @@
  * Field data (vtkCBC3DBCCLattice): `LatticeEdgeLength` (vtkDoubleArray, mm, 1 value), the
  * lattice cube edge used (the automatic choice when EdgeLength is 0).
  *
+ * Point data (vtkCBC3DDeformation): `Displacement` (vtkDoubleArray, 3 components, mm).
+ * Field data (vtkCBC3DDeformation): `DeformationIterations`, `DeformationStopReason`,
+ * `DeformationSources`, `DeformationTargets`.
+ *
  * Field data (vtkCBC3DRefinement): `RefinementPasses`, `RefinementStopReason`, and per tissue
  * `FidelityLabel`, `FidelityF1`, `FidelityF2`, `FidelityComponents`, `FidelityComponentsInMesh`.
  *
@@ -35,6 +39,11 @@ constexpr const char* LatticeEdgeLength = "LatticeEdgeLength";
 constexpr const char* RefinementLevel = "RefinementLevel";
 constexpr const char* RefinementPasses = "RefinementPasses";
 constexpr const char* RefinementStopReason = "RefinementStopReason";
+constexpr const char* Displacement = "Displacement";
+constexpr const char* DeformationIterations = "DeformationIterations";
+constexpr const char* DeformationStopReason = "DeformationStopReason";
+constexpr const char* DeformationSources = "DeformationSources";
+constexpr const char* DeformationTargets = "DeformationTargets";
 constexpr const char* FidelityLabel = "FidelityLabel";
 constexpr const char* FidelityF1 = "FidelityF1";
 constexpr const char* FidelityF2 = "FidelityF2";

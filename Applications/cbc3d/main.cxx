@@ -8,6 +8,7 @@
 
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DBCCLattice.h"
+#include "vtkCBC3DDeformation.h"
 #include "vtkCBC3DMeshQuality.h"
 #include "vtkCBC3DRefinement.h"
 
@@ -59,6 +60,14 @@ void SetBackground(vtkCBC3DAlgorithm* filter, const CommandLineOptions& options)
   {
     filter->AddBackgroundLabel(label);
   }
+}
+
+int PatternValue(const std::string& pattern)
+{
+  return pattern == "vertex" ? vtkCBC3DDeformation::VERTEX
+    : pattern == "face"      ? vtkCBC3DDeformation::FACE
+    : pattern == "none"      ? vtkCBC3DDeformation::NONE
+                             : vtkCBC3DDeformation::EDGE;
 }
 
 class Stopwatch
@@ -176,6 +185,22 @@ int main(int argc, char* argv[])
     mesher = refinement;
   }
 
+  vtkNew<vtkCBC3DDeformation> deformation;
+  if (options.Iterations > 0)
+  {
+    deformation->SetInputConnection(mesher->GetOutputPort());
+    deformation->SetImageData(image);
+    deformation->SetIterations(options.Iterations);
+    deformation->SetPattern(PatternValue(options.Pattern));
+    SetBackground(deformation, options);
+    deformation->SetNumberOfThreads(options.Threads);
+    if (!RunStage(deformation, "deformation", showProgress, report, error))
+    {
+      return Fail(error);
+    }
+    mesher = deformation;
+  }
+
   vtkNew<vtkCBC3DMeshQuality> quality;
   quality->SetInputConnection(mesher->GetOutputPort());
   quality->SetImageData(image);
@@ -205,12 +230,6 @@ int main(int argc, char* argv[])
   }
   if (!options.Quiet)
   {
-    if (options.Iterations > 0)
-    {
-      std::cerr << "cbc3d: note: deformation (--iterations) is not implemented yet; the mesh "
-                   "is not moved onto the image boundaries"
-                << std::endl;
-    }
     std::cout << FormatSummary(report) << std::flush;
   }
   return 0;

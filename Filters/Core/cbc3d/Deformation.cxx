@@ -1,0 +1,392 @@
+#include "cbc3d/Deformation.h"
+
+#include "cbc3d/MeshFaces.h"
+#include "cbc3d/Parallel.h"
+#include "cbc3d/TetGeometry.h"
+#include "cbc3d/TetTopology.h"
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <sstream>
+
+namespace cbc3d
+{
+namespace
+{
+// Surface and interface vertices with their label-sets, and every vertex's element size.
+struct Sources
+{
+  std::vector<PointId> Points;
+  std::vector<LabelSet> Labels;
+  std::vector<double> LocalSize; // per mesh point: mean length of the edges at it
+};
+
+Sources FindSources(const TetMesh& mesh)
+{
+  const std::size_t n = mesh.Points.size();
+  std::vector<char> onSurface(n, 0), outer(n, 0);
+  for (const MeshFace& face : FindMeshFaces(mesh))
+  {
+    const bool boundary = face.TetCount == 1;
+    const bool interface = face.TetCount == 2 && mesh.Labels[face.Tets[0]] != mesh.Labels[face.Tets[1]];
+    for (const PointId p : face.Points)
+    {
+      onSurface[p] |= boundary || interface;
+      outer[p] |= boundary;
+    }
+  }
+  std::vector<LabelSet> labels(n);
+  std::vector<double> length(n, 0.0);
+  std::vector<int> edges(n, 0);
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    const Tet& tet = mesh.Tets[t];
+    for (const PointId p : tet)
+    {
+      if (onSurface[p] && std::find(labels[p].begin(), labels[p].end(), mesh.Labels[t]) == labels[p].end())
+      {
+        labels[p].push_back(mesh.Labels[t]);
+      }
+    }
+    for (const auto& e : TetEdges)
+    {
+      const double l = (mesh.Points[tet[e[0]]] - mesh.Points[tet[e[1]]]).norm();
+      length[tet[e[0]]] += l;
+      length[tet[e[1]]] += l;
+      ++edges[tet[e[0]]];
+      ++edges[tet[e[1]]];
+    }
+  }
+  Sources sources;
+  sources.LocalSize.resize(n);
+  for (std::size_t p = 0; p < n; ++p)
+  {
+    sources.LocalSize[p] = edges[p] ? length[p] / edges[p] : 0.0;
+    if (onSurface[p])
+    {
+      if (outer[p])
+      {
+        labels[p].push_back(OutsideLabel);
+      }
+      std::sort(labels[p].begin(), labels[p].end());
+      sources.Points.push_back(static_cast<PointId>(p));
+      sources.Labels.push_back(labels[p]);
+    }
+  }
+  return sources;
+}
+
+// Targets bucketed on a uniform grid, for nearest-target queries within a radius.
+class TargetGrid
+{
+public:
+  TargetGrid(const std::vector<BoundaryTarget>& targets, double cell)
+    : Targets(targets)
+    , Cell(cell)
+  {
+    for (std::size_t t = 0; t < targets.size(); ++t)
+    {
+      this->Entries.emplace_back(this->Key(this->CellOf(targets[t].Position)), static_cast<int>(t));
+    }
+    std::sort(this->Entries.begin(), this->Entries.end());
+  }
+
+  /// The nearest target within `radius` whose label-set is one of `accepted`; -1 if none.
+  int Nearest(const Eigen::Vector3d& x, double radius, const std::vector<const LabelSet*>& accepted) const
+  {
+    const Eigen::Vector3i lo = this->CellOf(x - Eigen::Vector3d::Constant(radius));
+    const Eigen::Vector3i hi = this->CellOf(x + Eigen::Vector3d::Constant(radius));
+    int best = -1;
+    double bestDistance = radius * radius;
+    for (int k = lo[2]; k <= hi[2]; ++k)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int i = lo[0]; i <= hi[0]; ++i)
+        {
+          const std::int64_t key = this->Key(Eigen::Vector3i(i, j, k));
+          auto it = std::lower_bound(this->Entries.begin(), this->Entries.end(), std::make_pair(key, -1));
+          for (; it != this->Entries.end() && it->first == key; ++it)
+          {
+            const BoundaryTarget& target = this->Targets[it->second];
+            const double distance = (target.Position - x).squaredNorm();
+            if (distance <= bestDistance &&
+              std::any_of(accepted.begin(), accepted.end(), [&](const LabelSet* s) { return *s == target.Labels; }))
+            {
+              // Ties go to the lower target index, so the match is the same on every run.
+              if (distance < bestDistance || best < 0 || it->second < best)
+              {
+                best = it->second;
+                bestDistance = distance;
+              }
+            }
+          }
+        }
+    return best;
+  }
+
+private:
+  Eigen::Vector3i CellOf(const Eigen::Vector3d& x) const
+  {
+    return (x / this->Cell).array().floor().cast<int>();
+  }
+  std::int64_t Key(const Eigen::Vector3i& c) const
+  {
+    return (std::int64_t(c[0]) + (1 << 20)) + ((std::int64_t(c[1]) + (1 << 20)) << 21) +
+      ((std::int64_t(c[2]) + (1 << 20)) << 42);
+  }
+
+  const std::vector<BoundaryTarget>& Targets;
+  double Cell;
+  std::vector<std::pair<std::int64_t, int>> Entries;
+};
+
+// The label-sets a source may match: its own; failing that (no target has it), the sets of
+// two or more of its labels that targets have, such as the two-tissue interfaces meeting at a
+// triple line.
+std::vector<LabelSet> AcceptedSets(const LabelSet& source, const std::map<LabelSet, int>& present)
+{
+  if (present.count(source))
+  {
+    return { source };
+  }
+  std::vector<LabelSet> accepted;
+  for (const auto& entry : present)
+  {
+    const LabelSet& set = entry.first;
+    if (set.size() >= 2 && std::includes(source.begin(), source.end(), set.begin(), set.end()))
+    {
+      accepted.push_back(set);
+    }
+  }
+  return accepted;
+}
+
+// Tets that a move would invert or push past the angle bound.
+std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
+  double minimumRadians, int threads)
+{
+  const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
+  std::vector<char> bad(count, 0);
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
+  for (std::int64_t t = 0; t < count; ++t)
+  {
+    const Tet& tet = mesh.Tets[t];
+    if (!(SignedVolume(x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]) > 0.0))
+    {
+      bad[t] = 1;
+      continue;
+    }
+    for (const double a : DihedralAngles(x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]))
+    {
+      if (a < minimumRadians || a > M_PI - minimumRadians)
+      {
+        bad[t] = 1;
+        break;
+      }
+    }
+  }
+  std::vector<std::int64_t> result;
+  for (std::int64_t t = 0; t < count; ++t)
+  {
+    if (bad[t])
+    {
+      result.push_back(t);
+    }
+  }
+  return result;
+}
+} // namespace
+
+Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
+  TetMesh& out, DeformationResult& result, const Progress& progress)
+{
+  out = mesh;
+  result = DeformationResult();
+  result.Displacement.assign(mesh.Points.size(), Eigen::Vector3d::Zero());
+  const Status valid = ValidateLabelImage(image);
+  if (!valid.IsOk())
+  {
+    return valid;
+  }
+  const Status validMesh = ValidateTetMesh(mesh);
+  if (!validMesh.IsOk())
+  {
+    return Status::Error("the mesh to deform is not valid: " + validMesh.GetMessage());
+  }
+  if (params.Iterations < 0 || !(params.Penalty > 0.0) ||
+    !(params.MinimumDihedralAngle >= 0.0 && params.MinimumDihedralAngle < 60.0))
+  {
+    return Status::Error("deformation needs iterations >= 0, a positive penalty and a minimum "
+                         "dihedral angle from 0 to 60 degrees");
+  }
+  if (params.Iterations == 0 || mesh.Tets.empty())
+  {
+    result.StopReason = "no deformation asked (0 iterations)";
+    return Status::Ok();
+  }
+  const int threads = params.NumberOfThreads;
+  const double minimumRadians = params.MinimumDihedralAngle / RadiansToDegrees;
+  // The starting mesh must itself satisfy the bound, or no step could ever be checked against it.
+  const double startingMinimum = [&] {
+    double smallest = M_PI;
+    for (const Tet& tet : mesh.Tets)
+      for (const double a : DihedralAngles(mesh.Points[tet[0]], mesh.Points[tet[1]], mesh.Points[tet[2]], mesh.Points[tet[3]]))
+        smallest = std::min({ smallest, a, M_PI - a });
+    return smallest;
+  }();
+  const double bound = std::min(minimumRadians, startingMinimum);
+
+  const Sources sources = FindSources(mesh);
+  const std::vector<BoundaryTarget> targets = FindBoundaryTargets(image, params.Pattern);
+  result.Sources = sources.Points.size();
+  result.Targets = targets.size();
+  if (sources.Points.empty() || targets.empty())
+  {
+    result.StopReason = "nothing to register (no surface vertex or no boundary voxel)";
+    return Status::Ok();
+  }
+  std::map<LabelSet, int> present;
+  for (const BoundaryTarget& t : targets)
+  {
+    present.emplace(t.Labels, 0);
+  }
+  std::vector<std::vector<LabelSet>> accepted(sources.Points.size());
+  double largestSize = 0.0;
+  for (std::size_t s = 0; s < sources.Points.size(); ++s)
+  {
+    accepted[s] = AcceptedSets(sources.Labels[s], present);
+    largestSize = std::max(largestSize, sources.LocalSize[sources.Points[s]]);
+  }
+  const TargetGrid grid(targets, std::max(2.0 * largestSize, 1e-6));
+
+  // (K + P) du = P d: K the stiffness, P the springs tying each source to its match.
+  Eigen::SparseMatrix<double> system =
+    AssembleStiffness(mesh, params.Materials, params.DefaultMaterial, threads);
+  Eigen::VectorXd springs = Eigen::VectorXd::Zero(system.rows());
+  for (const PointId p : sources.Points)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      springs[3 * p + c] = params.Penalty * system.coeff(3 * p + c, 3 * p + c);
+    }
+  }
+  for (int i = 0; i < system.rows(); ++i)
+  {
+    system.coeffRef(i, i) += springs[i];
+  }
+  if (progress && !progress(0.1))
+  {
+    return Status::Aborted();
+  }
+  // Direct factorisation for small systems, once for all iterations; conjugate gradients,
+  // warm-started, for large ones.
+  const bool direct = system.rows() <= 150000;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
+  if (direct)
+  {
+    ldlt.compute(system);
+    if (ldlt.info() != Eigen::Success)
+    {
+      return Status::Error("the elastic system could not be factorised");
+    }
+  }
+  else
+  {
+    cg.setTolerance(1e-6);
+    cg.setMaxIterations(2000);
+    cg.compute(system);
+  }
+
+  std::vector<Eigen::Vector3d>& x = out.Points;
+  Eigen::VectorXd du = Eigen::VectorXd::Zero(system.rows());
+  for (int iteration = 0; iteration < params.Iterations; ++iteration)
+  {
+    // Matches: the nearest target of an accepted label-set within twice the element size,
+    // approached by at most one element size.
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(system.rows());
+    const std::int64_t sourceCount = static_cast<std::int64_t>(sources.Points.size());
+    double moved = 0.0;
+#pragma omp parallel for schedule(dynamic, 64) reduction(+ : moved) num_threads(ThreadCount(threads))
+    for (std::int64_t s = 0; s < sourceCount; ++s)
+    {
+      const PointId p = sources.Points[s];
+      const double size = sources.LocalSize[p];
+      std::vector<const LabelSet*> sets;
+      for (const LabelSet& set : accepted[s])
+      {
+        sets.push_back(&set);
+      }
+      const int match = sets.empty() ? -1 : grid.Nearest(x[p], 2.0 * size, sets);
+      if (match < 0)
+      {
+        continue;
+      }
+      Eigen::Vector3d d = targets[match].Position - x[p];
+      if (d.norm() > size)
+      {
+        d *= size / d.norm();
+      }
+      moved += d.norm();
+      for (int c = 0; c < 3; ++c)
+      {
+        rhs[3 * p + c] = springs[3 * p + c] * d[c];
+      }
+    }
+    du = direct ? Eigen::VectorXd(ldlt.solve(rhs)) : Eigen::VectorXd(cg.solveWithGuess(rhs, du));
+
+    // Try the step; hold back the vertices of tets it would spoil, until none is spoilt.
+    std::vector<Eigen::Vector3d> trial(x.size());
+    std::vector<char> held(x.size(), 0);
+    std::size_t heldCount = 0;
+    std::vector<std::int64_t> bad;
+    for (int round = 0; round < 50; ++round)
+    {
+      for (std::size_t p = 0; p < x.size(); ++p)
+      {
+        trial[p] = held[p] ? x[p] : Eigen::Vector3d(x[p] + du.segment<3>(3 * p));
+      }
+      bad = BadTets(out, trial, bound, threads);
+      if (bad.empty())
+      {
+        break;
+      }
+      for (const std::int64_t t : bad)
+      {
+        for (const PointId p : mesh.Tets[t])
+        {
+          heldCount += held[p] ? 0 : 1;
+          held[p] = 1;
+        }
+      }
+    }
+    if (!bad.empty())
+    {
+      result.StopReason = "a step could not be made without spoiling tets; the previous mesh is kept";
+      break;
+    }
+    for (std::size_t p = 0; p < x.size(); ++p)
+    {
+      result.Displacement[p] += trial[p] - x[p];
+    }
+    x.swap(trial);
+    ++result.Iterations;
+    result.MeanStep.push_back(moved / double(sourceCount));
+    result.HeldVertices.push_back(heldCount);
+    if (progress && !progress(0.1 + 0.9 * double(iteration + 1) / params.Iterations))
+    {
+      return Status::Aborted();
+    }
+  }
+  if (result.StopReason.empty())
+  {
+    std::ostringstream reason;
+    reason << "done: " << result.Iterations << " iterations";
+    result.StopReason = reason.str();
+  }
+  return Status::Ok();
+}
+} // namespace cbc3d

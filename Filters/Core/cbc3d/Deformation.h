@@ -1,0 +1,60 @@
+#ifndef cbc3d_Deformation_h
+#define cbc3d_Deformation_h
+
+#include "cbc3d/BoundaryTargets.h"
+#include "cbc3d/LabelImage.h"
+#include "cbc3d/LinearElasticity.h"
+#include "cbc3d/Progress.h"
+#include "cbc3d/Status.h"
+#include "cbc3d/TetMesh.h"
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace cbc3d
+{
+struct DeformationParams
+{
+  /// Registration iterations (the paper's 5); 0 leaves the mesh as it is.
+  int Iterations = 5;
+  /// Target-point thinning (the paper's non-connectivity pattern).
+  TargetPattern Pattern = TargetPattern::Edge;
+  /// Spring stiffness pulling each surface vertex to its target, as a multiple of the
+  /// vertex's own diagonal stiffness: larger follows the image more closely.
+  double Penalty = 10.0;
+  /// No step may leave a tet with a dihedral angle under this (degrees) or over 180 minus it:
+  /// vertices of such tets keep their place for that step (inverted tets are never made).
+  double MinimumDihedralAngle = 10.0;
+  /// Materials per tissue label; others get DefaultMaterial.
+  std::map<std::int32_t, Material> Materials;
+  Material DefaultMaterial;
+  /// OpenMP threads; 0 = all cores.
+  int NumberOfThreads = 0;
+};
+
+struct DeformationResult
+{
+  int Iterations = 0;                      // iterations that moved the mesh
+  std::size_t Sources = 0;                 // surface and interface vertices
+  std::size_t Targets = 0;                 // boundary voxels after the pattern
+  std::vector<double> MeanStep;            // per iteration: mean move of the sources (mm)
+  std::vector<std::size_t> HeldVertices;   // per iteration: vertices held back for quality
+  std::vector<Eigen::Vector3d> Displacement; // per point, in total (mm)
+  std::string StopReason;
+};
+
+/// Moves the surfaces and interfaces of a labelled tet mesh onto the image boundaries (paper,
+/// section 3.3): each iteration matches every surface or interface vertex (label-set: the
+/// labels of its tets, plus outside for the outer surface) to the nearest boundary voxel with
+/// the same label-set within twice the local element size, moves it there by at most the local
+/// element size (the mean length of its edges), and lets the interior follow through linear
+/// elasticity with the matches as penalty springs. A step that would invert a tet or push a
+/// dihedral angle past MinimumDihedralAngle holds the offending vertices back; the output
+/// never holds an inverted tet. Topology and labels are unchanged.
+Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
+  TetMesh& out, DeformationResult& result, const Progress& progress = nullptr);
+} // namespace cbc3d
+
+#endif

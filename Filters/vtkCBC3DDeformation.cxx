@@ -1,0 +1,179 @@
+#include "vtkCBC3DDeformation.h"
+
+#include "vtkCBC3DArrayNames.h"
+#include "vtkCBC3DConvert.h"
+
+#include "cbc3d/Deformation.h"
+
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkStringArray.h>
+#include <vtkUnstructuredGrid.h>
+
+vtkStandardNewMacro(vtkCBC3DDeformation);
+
+vtkCBC3DDeformation::vtkCBC3DDeformation()
+  : vtkCBC3DAlgorithm(1)
+{
+  this->SetNumberOfInputPorts(2);
+}
+
+void vtkCBC3DDeformation::SetImageConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(1, output);
+}
+
+void vtkCBC3DDeformation::SetImageData(vtkImageData* image)
+{
+  this->SetInputData(1, image);
+}
+
+const char* vtkCBC3DDeformation::GetPatternAsString() const
+{
+  static const char* names[] = { "Vertex", "Edge", "Face", "None" };
+  return names[this->Pattern];
+}
+
+void vtkCBC3DDeformation::SetTissueYoungModulus(int label, double modulus)
+{
+  this->YoungModuli[label] = modulus;
+  this->Modified();
+}
+
+void vtkCBC3DDeformation::RemoveAllTissueYoungModuli()
+{
+  if (!this->YoungModuli.empty())
+  {
+    this->YoungModuli.clear();
+    this->Modified();
+  }
+}
+
+int vtkCBC3DDeformation::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+    return 1;
+  }
+  return this->Superclass::FillInputPortInformation(port, info);
+}
+
+int vtkCBC3DDeformation::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkUnstructuredGrid* input = vtkUnstructuredGrid::GetData(inputVector[0]);
+  vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
+  cbc3d::TetMesh mesh;
+  std::string error;
+  if (!vtkCBC3DConvert::FromUnstructuredGrid(input, mesh, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  cbc3d::LabelImage image;
+  if (!this->ReadLabelImage(inputVector, image))
+  {
+    return 0;
+  }
+  for (const auto& entry : this->YoungModuli)
+  {
+    if (!(entry.second > 0.0))
+    {
+      vtkErrorMacro(<< "the Young's modulus of tissue " << entry.first << " must be positive");
+      return 0;
+    }
+  }
+  if (!(this->PoissonRatio > -1.0 && this->PoissonRatio < 0.5))
+  {
+    vtkErrorMacro(<< "Poisson's ratio must lie between -1 and 0.5, not " << this->PoissonRatio);
+    return 0;
+  }
+  cbc3d::DeformationParams params;
+  params.Iterations = this->Iterations;
+  params.Pattern = static_cast<cbc3d::TargetPattern>(this->Pattern);
+  params.Penalty = this->Penalty;
+  params.MinimumDihedralAngle = this->MinimumDihedralAngle;
+  params.DefaultMaterial.PoissonRatio = this->PoissonRatio;
+  for (const auto& entry : this->YoungModuli)
+  {
+    params.Materials[entry.first] = cbc3d::Material{ entry.second, this->PoissonRatio };
+  }
+  params.NumberOfThreads = this->NumberOfThreads;
+  cbc3d::TetMesh moved;
+  cbc3d::DeformationResult result;
+  const cbc3d::Status status =
+    cbc3d::DeformMesh(image, mesh, params, moved, result, vtkCBC3DConvert::MakeProgress(this));
+  if (status.WasAborted())
+  {
+    output->Initialize();
+    return 1;
+  }
+  if (!status.IsOk())
+  {
+    vtkErrorMacro(<< status.GetMessage());
+    return 0;
+  }
+  // Same cells and arrays as the input, moved points.
+  output->ShallowCopy(input);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(moved.Points.size()));
+  vtkNew<vtkDoubleArray> displacement;
+  displacement->SetName(vtkCBC3DArrayNames::Displacement);
+  displacement->SetNumberOfComponents(3);
+  displacement->SetNumberOfTuples(static_cast<vtkIdType>(moved.Points.size()));
+  for (std::size_t p = 0; p < moved.Points.size(); ++p)
+  {
+    points->SetPoint(static_cast<vtkIdType>(p), moved.Points[p].data());
+    displacement->SetTuple(static_cast<vtkIdType>(p), result.Displacement[p].data());
+  }
+  output->SetPoints(points);
+  vtkNew<vtkPointData> pointData;
+  pointData->ShallowCopy(input->GetPointData());
+  output->GetPointData()->ShallowCopy(pointData);
+  output->GetPointData()->AddArray(displacement);
+
+  vtkNew<vtkFieldData> fields;
+  fields->DeepCopy(input->GetFieldData());
+  vtkNew<vtkIntArray> iterations;
+  iterations->SetName(vtkCBC3DArrayNames::DeformationIterations);
+  iterations->InsertNextValue(result.Iterations);
+  vtkNew<vtkStringArray> reason;
+  reason->SetName(vtkCBC3DArrayNames::DeformationStopReason);
+  reason->InsertNextValue(result.StopReason);
+  vtkNew<vtkIdTypeArray> sources, targets;
+  sources->SetName(vtkCBC3DArrayNames::DeformationSources);
+  sources->InsertNextValue(static_cast<vtkIdType>(result.Sources));
+  targets->SetName(vtkCBC3DArrayNames::DeformationTargets);
+  targets->InsertNextValue(static_cast<vtkIdType>(result.Targets));
+  fields->AddArray(iterations);
+  fields->AddArray(reason);
+  fields->AddArray(sources);
+  fields->AddArray(targets);
+  output->SetFieldData(fields);
+  return 1;
+}
+
+void vtkCBC3DDeformation::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Iterations: " << this->Iterations << "\n";
+  os << indent << "Pattern: " << this->GetPatternAsString() << "\n";
+  os << indent << "Penalty: " << this->Penalty << "\n";
+  os << indent << "MinimumDihedralAngle: " << this->MinimumDihedralAngle << " degrees\n";
+  os << indent << "PoissonRatio: " << this->PoissonRatio << "\n";
+  for (const auto& entry : this->YoungModuli)
+  {
+    os << indent << "YoungModulus of tissue " << entry.first << ": " << entry.second << "\n";
+  }
+}

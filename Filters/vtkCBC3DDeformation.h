@@ -1,0 +1,130 @@
+/**
+ * @class   vtkCBC3DDeformation
+ * @brief   Move the surfaces and interfaces of a labelled tet mesh onto the image boundaries.
+ *
+ * The third stage of the CBC3D method (Drakopoulos et al., IMR 2014, section 3.3): a
+ * multi-material point-based registration with a linear-elastic finite-element model. Input
+ * port 0: a tet mesh with a `Label` cell array (normally vtkCBC3DRefinement's output); input
+ * port 1: the label image (input array 0; background labels as in the other filters).
+ *
+ * Sources are the mesh vertices on the outer surface and on tissue interfaces, each with the
+ * label-set of its tets (plus "outside" on the outer surface). Targets are centres of boundary
+ * voxels with the label-set of the voxel and its face-neighbours, thinned by Pattern (after a
+ * voxel is taken, its neighbours through a vertex, an edge or a face are not; None keeps all).
+ * Each iteration matches every source to the nearest target with its label-set within twice
+ * the local element size (the mean length of its edges), moves it by at most that size, and
+ * lets the interior follow through linear elasticity (4-node tets, Eigen sparse solvers), the
+ * matches acting as penalty springs of Penalty times the vertex's own stiffness. A step that
+ * would invert a tet or make a dihedral angle smaller than MinimumDihedralAngle (or larger than
+ * 180 minus it) holds the offending vertices back. Topology and labels do not change.
+ *
+ * Output: the moved mesh; point data `Displacement` (vtkDoubleArray, 3 components, mm); field
+ * data `DeformationIterations` (vtkIntArray), `DeformationStopReason` (vtkStringArray),
+ * `DeformationSources`, `DeformationTargets` (vtkIdTypeArray).
+ *
+ * @sa vtkCBC3DRefinement vtkCBC3DMeshQuality
+ */
+#ifndef vtkCBC3DDeformation_h
+#define vtkCBC3DDeformation_h
+
+#include "vtkCBC3DAlgorithm.h"
+#include "vtkCBC3DFiltersModule.h" // For export macro
+
+#include <map> // For per-tissue materials
+
+class vtkImageData;
+
+class VTKCBC3DFILTERS_EXPORT vtkCBC3DDeformation : public vtkCBC3DAlgorithm
+{
+public:
+  static vtkCBC3DDeformation* New();
+  vtkTypeMacro(vtkCBC3DDeformation, vtkCBC3DAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The label image (input port 1, required).
+   */
+  void SetImageConnection(vtkAlgorithmOutput* output);
+  void SetImageData(vtkImageData* image);
+  ///@}
+
+  ///@{
+  /**
+   * Registration iterations (default 5, the paper's); 0 passes the mesh through.
+   */
+  vtkSetClampMacro(Iterations, int, 0, 1000);
+  vtkGetMacro(Iterations, int);
+  ///@}
+
+  enum Patterns
+  {
+    VERTEX = 0,
+    EDGE = 1,
+    FACE = 2,
+    NONE = 3
+  };
+
+  ///@{
+  /**
+   * Target thinning: Vertex (26 neighbours blocked), Edge (18, the default), Face (6), None.
+   */
+  vtkSetClampMacro(Pattern, int, VERTEX, NONE);
+  vtkGetMacro(Pattern, int);
+  void SetPatternToVertex() { this->SetPattern(VERTEX); }
+  void SetPatternToEdge() { this->SetPattern(EDGE); }
+  void SetPatternToFace() { this->SetPattern(FACE); }
+  void SetPatternToNone() { this->SetPattern(NONE); }
+  const char* GetPatternAsString() const;
+  ///@}
+
+  ///@{
+  /**
+   * Spring stiffness tying each surface vertex to its target, as a multiple of the vertex's
+   * own stiffness (default 10): larger follows the image more closely.
+   */
+  vtkSetMacro(Penalty, double);
+  vtkGetMacro(Penalty, double);
+  ///@}
+
+  ///@{
+  /**
+   * Quality guard in degrees (default 10): no step makes a dihedral angle smaller than this or
+   * larger than 180 minus it; inverted tets are never made.
+   */
+  vtkSetMacro(MinimumDihedralAngle, double);
+  vtkGetMacro(MinimumDihedralAngle, double);
+  ///@}
+
+  ///@{
+  /**
+   * Elastic material: Poisson's ratio for all tissues (default 0.3) and a Young's modulus per
+   * tissue label (default 1 for every tissue; only ratios matter).
+   */
+  vtkSetMacro(PoissonRatio, double);
+  vtkGetMacro(PoissonRatio, double);
+  void SetTissueYoungModulus(int label, double modulus);
+  void RemoveAllTissueYoungModuli();
+  ///@}
+
+protected:
+  vtkCBC3DDeformation();
+  ~vtkCBC3DDeformation() override = default;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  int Iterations = 5;
+  int Pattern = EDGE;
+  double Penalty = 10.0;
+  double MinimumDihedralAngle = 10.0;
+  double PoissonRatio = 0.3;
+  std::map<int, double> YoungModuli;
+
+private:
+  vtkCBC3DDeformation(const vtkCBC3DDeformation&) = delete;
+  void operator=(const vtkCBC3DDeformation&) = delete;
+};
+
+#endif
