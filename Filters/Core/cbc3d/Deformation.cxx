@@ -2,6 +2,7 @@
 
 #include "cbc3d/MeshFaces.h"
 #include "cbc3d/Parallel.h"
+#include "cbc3d/SurfacePoints.h"
 #include "cbc3d/TetGeometry.h"
 #include "cbc3d/TetTopology.h"
 
@@ -11,6 +12,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <memory>
 #include <cmath>
 #include <sstream>
 
@@ -196,6 +198,129 @@ std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::
   }
   return result;
 }
+// Keeps each tissue's Hausdorff distance from growing: the distance between the tissue's
+// surface vertices and its boundary voxel centres (the measure vtkCBC3DMeshQuality reports).
+class FidelityGuard
+{
+public:
+  FidelityGuard(const LabelImage& image, const TetMesh& mesh, double cell, int threads)
+    : Cell(cell)
+    , Threads(threads)
+  {
+    const auto vertices = TissueSurfaceVertices(mesh);
+    const auto voxels = TissueBoundaryVoxelCentres(image, threads);
+    for (const auto& [label, ids] : vertices)
+    {
+      const auto found = voxels.find(label);
+      if (found != voxels.end())
+      {
+        this->Tissues.push_back({ ids, found->second, 0.0 });
+      }
+    }
+    for (Tissue& tissue : this->Tissues)
+    {
+      tissue.Grid = std::make_unique<PointGrid>(tissue.Voxels, cell);
+      tissue.Hausdorff = this->Measure(tissue, mesh.Points);
+    }
+  }
+
+  /// Holds back (share 0) the vertices whose step would push a tissue's Hausdorff distance past
+  /// its current value: vertices that would end farther from the tissue's boundary voxels, and
+  /// the former nearest vertices of boundary voxels that would be left farther from the mesh.
+  /// Returns how many vertices it held.
+  std::size_t Hold(const std::vector<Eigen::Vector3d>& current, const std::vector<Eigen::Vector3d>& trial,
+    std::vector<double>& share) const
+  {
+    std::vector<char> hold(current.size(), 0);
+    for (const Tissue& tissue : this->Tissues)
+    {
+      const double limit = tissue.Hausdorff * (1.0 + 1e-12);
+      for (const PointId v : tissue.Vertices)
+      {
+        if (share[v] > 0.0 && tissue.Grid->Nearest(trial[v], limit, [](int) { return true; }) < 0)
+        {
+          hold[v] = 1;
+        }
+      }
+      std::vector<Eigen::Vector3d> before, after;
+      for (const PointId v : tissue.Vertices)
+      {
+        before.push_back(current[v]);
+        after.push_back(trial[v]);
+      }
+      const PointGrid beforeGrid(before, this->Cell), afterGrid(after, this->Cell);
+      for (const Eigen::Vector3d& voxel : tissue.Voxels)
+      {
+        if (afterGrid.Nearest(voxel, limit, [](int) { return true; }) < 0)
+        {
+          const int covering = beforeGrid.Nearest(voxel, limit, [](int) { return true; });
+          if (covering >= 0 && share[tissue.Vertices[covering]] > 0.0)
+          {
+            hold[tissue.Vertices[covering]] = 1;
+          }
+        }
+      }
+    }
+    std::size_t held = 0;
+    for (std::size_t p = 0; p < hold.size(); ++p)
+    {
+      if (hold[p])
+      {
+        share[p] = 0.0;
+        ++held;
+      }
+    }
+    return held;
+  }
+
+  /// Records the accepted positions' distances as the new limits.
+  void Accept(const std::vector<Eigen::Vector3d>& points)
+  {
+    for (Tissue& tissue : this->Tissues)
+    {
+      tissue.Hausdorff = std::min(tissue.Hausdorff, this->Measure(tissue, points));
+    }
+  }
+
+private:
+  struct Tissue
+  {
+    std::vector<PointId> Vertices;
+    std::vector<Eigen::Vector3d> Voxels;
+    double Hausdorff;
+    std::unique_ptr<PointGrid> Grid;
+  };
+
+  // Two-sided distance by brute-force-free nearest queries, growing the radius until found.
+  double Measure(const Tissue& tissue, const std::vector<Eigen::Vector3d>& points) const
+  {
+    std::vector<Eigen::Vector3d> vertices;
+    for (const PointId v : tissue.Vertices)
+    {
+      vertices.push_back(points[v]);
+    }
+    const PointGrid vertexGrid(vertices, this->Cell);
+    auto farthest = [this](const std::vector<Eigen::Vector3d>& from, const PointGrid& to,
+                      const std::vector<Eigen::Vector3d>& toPoints) {
+      double worst = 0.0;
+      for (const Eigen::Vector3d& p : from)
+      {
+        int nearest = -1;
+        for (double radius = this->Cell; nearest < 0 && radius < 1e9; radius *= 2.0)
+        {
+          nearest = to.Nearest(p, radius, [](int) { return true; });
+        }
+        worst = std::max(worst, nearest < 0 ? 0.0 : (toPoints[nearest] - p).norm());
+      }
+      return worst;
+    };
+    return std::max(farthest(vertices, *tissue.Grid, tissue.Voxels), farthest(tissue.Voxels, vertexGrid, vertices));
+  }
+
+  double Cell;
+  int Threads;
+  std::vector<Tissue> Tissues;
+};
 } // namespace
 
 Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
@@ -265,6 +390,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   }
   const double cell = std::max(2.0 * largestSize, 1e-6);
   const PointGrid targetGrid(targetPoints, cell);
+  FidelityGuard fidelity(image, mesh, cell, threads);
   const Eigen::SparseMatrix<double> stiffness =
     AssembleStiffness(mesh, params.Materials, params.DefaultMaterial, threads);
   if (progress && !progress(0.1))
@@ -287,7 +413,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     // Goals: each source's nearest target of an accepted label-set within twice its element
     // size, averaged with the targets whose nearest source it is (so that parts of the image
     // boundary far from every vertex pull the surface too); approached by at most one element
-    // size. Unmatched sources move with their neighbours.
+    // size. Unmatched sources keep their place.
     std::vector<Eigen::Vector3d> sourcePoints(sourceCount);
     for (std::int64_t s = 0; s < sourceCount; ++s)
     {
@@ -336,13 +462,21 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
       }
       if (match < 0 && goalCount[s] == 0)
       {
+        // No target near: the vertex keeps its place rather than drift with its neighbours.
+        for (int c = 0; c < 3; ++c)
+        {
+          springs[3 * p + c] = params.Penalty * stiffness.coeff(3 * p + c, 3 * p + c);
+        }
         continue;
       }
-      Eigen::Vector3d d = goal - x[p];
-      if (d.norm() > size)
+      // Never farther than one element size from where the vertex started, so vertices
+      // cannot drift along a boundary over the iterations.
+      const Eigen::Vector3d start = mesh.Points[p];
+      if ((goal - start).norm() > size)
       {
-        d *= size / d.norm();
+        goal = start + (goal - start) * (size / (goal - start).norm());
       }
+      const Eigen::Vector3d d = goal - x[p];
       moved += d.norm();
       for (int c = 0; c < 3; ++c)
       {
@@ -350,41 +484,54 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
         rhs[3 * p + c] = springs[3 * p + c] * d[c];
       }
     }
+    // A faint anchor on every point keeps pieces of the mesh that no spring holds (a small
+    // component with no match) in place, where the bare stiffness would let them float.
     Eigen::SparseMatrix<double> system = stiffness;
     for (int i = 0; i < system.rows(); ++i)
     {
-      system.coeffRef(i, i) += springs[i];
+      system.coeffRef(i, i) += springs[i] + 1e-6 * stiffness.coeff(i, i);
     }
     cg.compute(system);
     du = cg.solveWithGuess(rhs, du);
     if (std::getenv("CBC3D_DEBUG"))
-      std::fprintf(stderr, "cg %d iterations, error %g\n", int(cg.iterations()), cg.error());
+    {
+      Eigen::Index worst = 0;
+      du.cwiseAbs().maxCoeff(&worst);
+      std::fprintf(stderr, "cg %d iterations, error %g, largest du %g at point %ld (diag %g, spring %g)\n",
+        int(cg.iterations()), cg.error(), du[worst], long(worst / 3), stiffness.coeff(worst, worst), springs[worst]);
+    }
 
-    // Try the step; hold back the vertices of tets it would spoil, until none is spoilt.
+    // Try the step; shorten it at the vertices of tets it would spoil (by half each round,
+    // then not at all), until none is spoilt.
     std::vector<Eigen::Vector3d> trial(x.size());
-    std::vector<char> held(x.size(), 0);
-    std::size_t heldCount = 0;
+    std::vector<double> share(x.size(), 1.0);
     std::vector<std::int64_t> bad;
     for (int round = 0; round < 50; ++round)
     {
       for (std::size_t p = 0; p < x.size(); ++p)
       {
-        trial[p] = held[p] ? x[p] : Eigen::Vector3d(x[p] + du.segment<3>(3 * p));
+        trial[p] = x[p] + share[p] * du.segment<3>(3 * p);
       }
       bad = BadTets(out, trial, bound, threads);
       if (bad.empty())
       {
-        break;
+        if (fidelity.Hold(x, trial, share) == 0)
+        {
+          break;
+        }
+        bad.push_back(-1); // held for fidelity: try again with those vertices in place
+        continue;
       }
       for (const std::int64_t t : bad)
       {
         for (const PointId p : mesh.Tets[t])
         {
-          heldCount += held[p] ? 0 : 1;
-          held[p] = 1;
+          share[p] = share[p] > 1.0 / 16.0 ? 0.5 * share[p] : 0.0;
         }
       }
     }
+    const std::size_t heldCount = static_cast<std::size_t>(
+      std::count_if(share.begin(), share.end(), [](double f) { return f < 1.0; }));
     if (!bad.empty())
     {
       result.StopReason = "a step could not be made without spoiling tets; the previous mesh is kept";
@@ -395,6 +542,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
       result.Displacement[p] += trial[p] - x[p];
     }
     x.swap(trial);
+    fidelity.Accept(x);
     ++result.Iterations;
     result.MeanStep.push_back(moved / double(sourceCount));
     result.HeldVertices.push_back(heldCount);
