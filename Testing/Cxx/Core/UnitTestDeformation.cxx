@@ -1,0 +1,154 @@
+#include "cbc3d/BCCLattice.h"
+#include "cbc3d/Deformation.h"
+#include "cbc3d/LinearElasticity.h"
+#include "cbc3d/SurfacePoints.h"
+#include "cbc3d/TetGeometry.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/SparseCore>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+namespace
+{
+// The cube [0,2]^3 as six positive tets around its diagonal.
+cbc3d::TetMesh Cube()
+{
+  cbc3d::TetMesh mesh;
+  for (int c = 0; c < 8; ++c)
+    mesh.Points.emplace_back(c & 1 ? 2 : 0, c & 2 ? 2 : 0, c & 4 ? 2 : 0);
+  mesh.Tets = { { 0, 1, 3, 7 }, { 0, 3, 2, 7 }, { 0, 2, 6, 7 }, { 0, 6, 4, 7 }, { 0, 4, 5, 7 }, { 0, 5, 1, 7 } };
+  mesh.Labels.assign(6, 1);
+  return mesh;
+}
+
+Eigen::VectorXd Field(const cbc3d::TetMesh& mesh, const std::function<Eigen::Vector3d(const Eigen::Vector3d&)>& u)
+{
+  Eigen::VectorXd v(3 * mesh.Points.size());
+  for (std::size_t p = 0; p < mesh.Points.size(); ++p)
+    v.segment<3>(3 * p) = u(mesh.Points[p]);
+  return v;
+}
+
+cbc3d::LabelImage Ball()
+{
+  cbc3d::LabelImage image;
+  image.Dimensions = { 30, 30, 30 };
+  image.Labels.assign(30 * 30 * 30, 0);
+  for (int k = 0; k < 30; ++k)
+    for (int j = 0; j < 30; ++j)
+      for (int i = 0; i < 30; ++i)
+        if ((Eigen::Vector3d(i, j, k) - Eigen::Vector3d(14.5, 14.5, 14.5)).norm() <= 9.0)
+          image.Labels[image.VoxelIndex(i, j, k)] = 1;
+  return image;
+}
+
+// Largest and mean distance between the ball's surface vertices and boundary voxel centres,
+// both ways, by brute force.
+std::pair<double, double> Distances(const cbc3d::LabelImage& image, const cbc3d::TetMesh& mesh)
+{
+  const auto vertices = cbc3d::TissueSurfaceVertices(mesh).at(1);
+  const auto voxels = cbc3d::TissueBoundaryVoxelCentres(image).at(1);
+  double largest = 0.0, sum = 0.0;
+  for (const auto v : vertices)
+  {
+    double nearest = 1e300;
+    for (const auto& b : voxels)
+      nearest = std::min(nearest, (mesh.Points[v] - b).norm());
+    largest = std::max(largest, nearest);
+    sum += nearest;
+  }
+  for (const auto& b : voxels)
+  {
+    double nearest = 1e300;
+    for (const auto v : vertices)
+      nearest = std::min(nearest, (mesh.Points[v] - b).norm());
+    largest = std::max(largest, nearest);
+    sum += nearest;
+  }
+  return { largest, sum / double(vertices.size() + voxels.size()) };
+}
+} // namespace
+
+TEST(LinearElasticity, RigidMotionsCostNothingAndUniaxialStrainHasItsKnownEnergy)
+{
+  const cbc3d::TetMesh mesh = Cube();
+  cbc3d::Material material{ 3.0, 0.25 };
+  const Eigen::SparseMatrix<double> k = cbc3d::AssembleStiffness(mesh, {}, material, 2);
+  // Symmetric.
+  EXPECT_LT((Eigen::MatrixXd(k) - Eigen::MatrixXd(k).transpose()).norm(), 1e-12);
+  // A translation and an infinitesimal rotation: no force anywhere.
+  const Eigen::VectorXd shift = Field(mesh, [](const Eigen::Vector3d&) { return Eigen::Vector3d(0.3, -1.0, 2.0); });
+  EXPECT_LT((k * shift).norm(), 1e-12);
+  const Eigen::Vector3d axis(0.2, 0.5, -0.3);
+  const Eigen::VectorXd spin = Field(mesh, [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(axis.cross(x)); });
+  EXPECT_LT((k * spin).norm(), 1e-12);
+  // u = (e x, 0, 0): strain energy 1/2 u.K.u = 1/2 e^2 (lambda + 2 mu) V, with V = 8.
+  const double e = 0.01;
+  const Eigen::VectorXd stretch = Field(mesh, [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(e * x[0], 0, 0); });
+  const double lambda = material.YoungModulus * material.PoissonRatio /
+    ((1 + material.PoissonRatio) * (1 - 2 * material.PoissonRatio));
+  const double mu = material.YoungModulus / (2 * (1 + material.PoissonRatio));
+  EXPECT_NEAR(0.5 * stretch.dot(k * stretch), 0.5 * e * e * (lambda + 2 * mu) * 8.0, 1e-12);
+  // A stiffer tissue doubles its share.
+  const Eigen::SparseMatrix<double> stiffer = cbc3d::AssembleStiffness(mesh, { { 1, { 6.0, 0.25 } } }, material, 1);
+  EXPECT_NEAR(stretch.dot(stiffer * stretch), 2.0 * stretch.dot(k * stretch), 1e-12);
+}
+
+TEST(Deformation, BringsTheSurfaceCloserWithoutSpoilingTets)
+{
+  const cbc3d::LabelImage image = Ball();
+  cbc3d::LatticeParams lattice;
+  lattice.EdgeLength = 4.0;
+  cbc3d::TetMesh start;
+  ASSERT_TRUE(cbc3d::BuildBCCLattice(image, lattice, start).IsOk());
+  cbc3d::DeformationParams params;
+  cbc3d::TetMesh moved;
+  cbc3d::DeformationResult result;
+  ASSERT_TRUE(cbc3d::DeformMesh(image, start, params, moved, result).IsOk());
+  EXPECT_GT(result.Iterations, 0);
+  EXPECT_GT(result.Sources, 0u);
+  EXPECT_GT(result.Targets, 0u);
+  EXPECT_EQ(moved.Tets, start.Tets);
+  EXPECT_EQ(moved.Labels, start.Labels);
+  EXPECT_TRUE(cbc3d::ValidateTetMesh(moved).IsOk());
+  for (const auto& tet : moved.Tets)
+    for (const double a : cbc3d::DihedralAngles(moved.Points[tet[0]], moved.Points[tet[1]], moved.Points[tet[2]], moved.Points[tet[3]]))
+    {
+      ASSERT_GE(a * cbc3d::RadiansToDegrees, params.MinimumDihedralAngle - 1e-9);
+      ASSERT_LE(a * cbc3d::RadiansToDegrees, 180.0 - params.MinimumDihedralAngle + 1e-9);
+    }
+  const auto before = Distances(image, start);
+  const auto after = Distances(image, moved);
+  EXPECT_LE(after.first, before.first + 1e-12);   // the Hausdorff distance never grows
+  EXPECT_LT(after.second, 0.8 * before.second);   // and the surface comes closer on the whole
+  for (std::size_t p = 0; p < moved.Points.size(); ++p)
+    EXPECT_TRUE((moved.Points[p] - start.Points[p]).isApprox(result.Displacement[p], 1e-9) ||
+      result.Displacement[p].norm() < 1e-12);
+}
+
+TEST(Deformation, SameResultForOneAndTwoThreadsAndZeroIterationsChangesNothing)
+{
+  const cbc3d::LabelImage image = Ball();
+  cbc3d::LatticeParams lattice;
+  lattice.EdgeLength = 5.0;
+  cbc3d::TetMesh start;
+  ASSERT_TRUE(cbc3d::BuildBCCLattice(image, lattice, start).IsOk());
+  cbc3d::DeformationParams params;
+  params.Iterations = 3;
+  cbc3d::TetMesh one, two;
+  cbc3d::DeformationResult r1, r2;
+  params.NumberOfThreads = 1;
+  ASSERT_TRUE(cbc3d::DeformMesh(image, start, params, one, r1).IsOk());
+  params.NumberOfThreads = 2;
+  ASSERT_TRUE(cbc3d::DeformMesh(image, start, params, two, r2).IsOk());
+  EXPECT_EQ(one.Points, two.Points);
+  params.Iterations = 0;
+  ASSERT_TRUE(cbc3d::DeformMesh(image, start, params, one, r1).IsOk());
+  EXPECT_EQ(one.Points, start.Points);
+  params.Iterations = 2;
+  params.Penalty = -1;
+  EXPECT_FALSE(cbc3d::DeformMesh(image, start, params, one, r1).IsOk());
+}
