@@ -62,11 +62,17 @@ with tempfile.TemporaryDirectory() as work:
           "--quiet prints nothing (stdout %r, stderr %r)" % (result.stdout, result.stderr))
     check(open(vtk, "rb").read(30).startswith(b"# vtk DataFile Version 4.2"), ".vtk is legacy 4.2")
 
-    # Default parameters: refinement and deformation are not there yet, and the run says so.
-    result = run(PHANTOM, "-o", os.path.join(work, "default.vtu"))
-    check(result.returncode == 0 and "not implemented yet" in result.stderr,
-          "default run notes the missing stages")
+    # Default parameters: lattice, refinement to F 0.95, 5 deformation iterations, quality.
+    default_report = os.path.join(work, "default.json")
+    result = run(PHANTOM, "-o", os.path.join(work, "default.vtu"), "--report", default_report)
+    check(result.returncode == 0 and result.stderr == "", "default run exits 0 quietly (%r)" % result.stderr)
     check("lattice size 8.000 mm" in result.stdout, "default lattice size is 8 x 1 mm")
+    default = json.load(open(default_report))
+    check(all(stage in default["seconds"] for stage in ("lattice", "refinement", "deformation", "quality")),
+          "default run has every stage: %s" % sorted(default["seconds"]))
+    check(default["inverted_tetrahedra"] == 0 and default["min_dihedral_deg"] >= 10 - 1e-9,
+          "default mesh: no inverted tet, angles >= 10 degrees")
+    check(all("fidelity_f1" in t for t in default["tissues"].values()), "default report has F1/F2 per tissue")
 
     result = run("--help")
     check(result.returncode == 0 and "--bcc-size" in result.stdout, "--help")

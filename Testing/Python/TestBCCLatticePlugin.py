@@ -104,4 +104,17 @@ check([fields.GetArray("FidelityLabel").GetValue(i) for i in range(3)] == [1, 2,
 check(all(0 < fields.GetArray(n).GetValue(i) <= 1 for n in ("FidelityF1", "FidelityF2") for i in range(3)), "F1, F2 in (0, 1]")
 check("Fidelity: 0.99" in str(refined.GetClientSideObject()), "PrintSelf shows Fidelity")
 
+# Deformation through its proxy; every Pattern entry reaches the C++ object by name.
+deformed = CBC3DDeformation(Input=refined, Image=nifti)
+for name in ("Vertex", "Edge", "Face", "None"):
+    deformed.Pattern = name
+    check("Pattern: " + name in str(deformed.GetClientSideObject()), "Pattern %s reaches the filter" % name)
+deformed.Pattern = "Edge"
+deformed.Iterations = 3
+deformed.UpdatePipeline()
+moved = servermanager.Fetch(deformed)
+check(moved.GetNumberOfCells() == fine.GetNumberOfCells(), "deformation keeps the tets")
+check(moved.GetPointData().GetArray("Displacement").GetNumberOfComponents() == 3, "Displacement per point")
+check(moved.GetFieldData().GetArray("DeformationIterations").GetValue(0) >= 1, "deformation iterated")
+
 check.finish()
