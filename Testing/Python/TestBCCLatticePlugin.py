@@ -117,4 +117,16 @@ check(moved.GetNumberOfCells() == fine.GetNumberOfCells(), "deformation keeps th
 check(moved.GetPointData().GetArray("Displacement").GetNumberOfComponents() == 3, "Displacement per point")
 check(moved.GetFieldData().GetArray("DeformationIterations").GetValue(0) >= 1, "deformation iterated")
 
+# The one-shot filter with its few default properties.
+oneshot = CBC3DImageToMesh(Input=nifti)
+oneshot.LatticeSize = 4.0
+oneshot.DeformationIterations = 2
+oneshot.UpdatePipeline()
+final = servermanager.Fetch(oneshot)
+fields = final.GetFieldData()
+check(final.GetNumberOfCells() > 0 and fields.GetArray("InvertedTetCount").GetValue(0) == 0, "one-shot mesh, no inverted tet")
+check(fields.GetArray("HausdorffDistance") is not None and fields.GetArray("FidelityF1") is not None, "one-shot figures")
+check([p.GetXMLLabel() for p in [oneshot.GetProperty(n) for n in ("LatticeSize", "Fidelity", "Iterations")]] ==
+      ["Lattice Size", "Fidelity", "Deformation Iterations"], "one-shot property labels")
+
 check.finish()
