@@ -1,5 +1,6 @@
 # Renders the pictures in Documentation/images with the CBC3D plugin:
-#   xvfb-run -a pvpython Documentation/MakePictures.py build/lib/paraview-5.11/plugins/CBC3D/CBC3D.so
+#   xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" pvpython Documentation/MakePictures.py \
+#     build/lib/paraview-5.11/plugins/CBC3D/CBC3D.so
 # The real-image pictures need ../shared/data and are skipped without it.
 import os
 import sys
@@ -14,7 +15,7 @@ shared = os.path.join(root, "..", "shared", "data")
 
 
 def picture(image_path, edge, out_name, background=None, view_up=(0, 0, 1), direction=(1, -1, 0.6),
-            refine=False, color_by="Label"):
+            refine=False, color_by="Label", final=False):
     """The lattice (or the refined mesh) clipped by a plane through its centre, coloured by Label."""
     image = OpenDataFile(image_path)
     lattice = CBC3DBCCLattice(Input=image)
@@ -23,6 +24,11 @@ def picture(image_path, edge, out_name, background=None, view_up=(0, 0, 1), dire
         lattice.BackgroundLabels = background
     if refine:
         lattice = CBC3DRefinement(Input=lattice, Image=image)
+        if background is not None:
+            lattice.BackgroundLabels = background
+    if final:
+        lattice = CBC3DImageToMesh(Input=image)
+        lattice.LatticeSize = edge
         if background is not None:
             lattice.BackgroundLabels = background
     lattice.UpdatePipeline()
@@ -80,5 +86,7 @@ if os.path.isdir(shared):
     picture(os.path.join(shared, "nipype-tissue-labels.nii.gz"), 8.0, "refined-three-tissues.png", refine=True)
     picture(os.path.join(shared, "cbc3d-nidus.nii.gz"), 8.0, "refined-nidus.png", refine=True, direction=(1, -1, 1.2),
             color_by="RefinementLevel")
+    picture(os.path.join(shared, "cbc3d-brain.nii.gz"), 8.0, "final-brain.png", direction=(-1, -1, 0.6), final=True)
+    picture(os.path.join(shared, "nipype-tissue-labels.nii.gz"), 8.0, "final-three-tissues.png", final=True)
 else:
     print("no ../shared/data: real-image pictures skipped")

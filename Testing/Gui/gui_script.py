@@ -1,6 +1,6 @@
 # Run by the ParaView GUI (not pvpython) from Testing/Gui/TestParaViewGui.py:
 #   xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" paraview --dr --script=gui_script.py --exit
-# Loads the CBC3D plugin, opens Data/nested_shells.vti, applies the BCC lattice (EdgeLength 2),
+# Loads the CBC3D plugin, opens Data/nested_shells.vti, applies CBC3D Image To Mesh (lattice 4 mm),
 # clips it through the centre keeping whole tets (crinkle), colours it by Label in the GUI's
 # render view and saves a screenshot. Paths come from the environment: CBC3D_PLUGIN,
 # CBC3D_SOURCE_DIR, CBC3D_GUI_SCREENSHOT. Writes CBC3D_GUI_SCREENSHOT + ".txt" with
@@ -15,8 +15,8 @@ screenshot = os.environ["CBC3D_GUI_SCREENSHOT"]
 
 LoadPlugin(plugin, remote=False, ns=globals())
 image = OpenDataFile(os.path.join(source, "Data", "nested_shells.vti"))
-lattice = CBC3DBCCLattice(Input=image)
-lattice.EdgeLength = 2.0
+lattice = CBC3DImageToMesh(Input=image)  # the one-shot filter: all stages
+lattice.LatticeSize = 4.0
 lattice.UpdatePipeline()
 cells = lattice.GetDataInformation().GetNumberOfCells()
 bounds = lattice.GetDataInformation().GetBounds()
