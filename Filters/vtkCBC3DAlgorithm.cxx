@@ -7,15 +7,48 @@
 #include <vtkDataObject.h>
 #include <vtkDataSetAttributes.h>
 #include <vtkImageData.h>
+#include <vtkInformation.h>
 #include <vtkInformationVector.h>
 
 #include <algorithm>
 
-vtkCBC3DAlgorithm::vtkCBC3DAlgorithm(int imagePort)
-  : ImagePort(imagePort)
+vtkCBC3DAlgorithm::vtkCBC3DAlgorithm(ImageInput input)
+  : ImagePort(input == ImageInput::Port0 ? 0 : 1)
+  , ImageOptional(input == ImageInput::OptionalPort1)
 {
-  this->SetInputArrayToProcess(
-    0, imagePort, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+  this->SetNumberOfInputPorts(this->ImagePort + 1);
+  this->SetInputArrayToProcess(0, this->ImagePort, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS,
+    vtkDataSetAttributes::SCALARS);
+}
+
+void vtkCBC3DAlgorithm::SetImageConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(this->ImagePort, output);
+}
+
+void vtkCBC3DAlgorithm::SetImageData(vtkImageData* image)
+{
+  this->SetInputData(this->ImagePort, image);
+}
+
+int vtkCBC3DAlgorithm::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (port == this->ImagePort)
+  {
+    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+    if (this->ImageOptional)
+    {
+      info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+    }
+    return 1;
+  }
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkUnstructuredGrid");
+  return 1;
+}
+
+bool vtkCBC3DAlgorithm::HasImage(vtkInformationVector** inputVector) const
+{
+  return inputVector[this->ImagePort]->GetNumberOfInformationObjects() > 0;
 }
 
 void vtkCBC3DAlgorithm::AddBackgroundLabel(int label)

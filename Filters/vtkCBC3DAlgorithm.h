@@ -5,7 +5,8 @@
  * Every CBC3D filter produces a vtkUnstructuredGrid and reads a label image the same way: the
  * image's label array is input array 0 (SetInputArrayToProcess; default: the active point
  * scalars), every label not listed as background is a tissue, and label values are kept as
- * they are. Subclasses say on which input port the image arrives.
+ * they are. The image arrives on port 0 (filters that start from the image) or on port 1 after
+ * a mesh on port 0 (filters that work on a mesh); subclasses say which.
  *
  * @sa vtkCBC3DBCCLattice vtkCBC3DMeshQuality
  */
@@ -16,6 +17,8 @@
 #include "vtkUnstructuredGridAlgorithm.h"
 
 #include <vector> // For background labels
+
+class vtkImageData;
 
 namespace cbc3d
 {
@@ -47,9 +50,28 @@ public:
   vtkGetMacro(NumberOfThreads, int);
   ///@}
 
+  ///@{
+  /**
+   * The label image, for filters that take a mesh on port 0 and the image on port 1.
+   */
+  void SetImageConnection(vtkAlgorithmOutput* output);
+  void SetImageData(vtkImageData* image);
+  ///@}
+
 protected:
-  /// `imagePort`: the input port of the label image; input array 0 is set to its point scalars.
-  explicit vtkCBC3DAlgorithm(int imagePort = 0);
+  enum class ImageInput
+  {
+    Port0,         // image in, mesh out
+    Port1,         // mesh on port 0, image on port 1
+    OptionalPort1  // the same, the image optional
+  };
+  /// Sets the ports and makes input array 0 the image's active point scalars.
+  explicit vtkCBC3DAlgorithm(ImageInput input = ImageInput::Port0);
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  /// Whether an image was connected (always true for ImageInput::Port0).
+  bool HasImage(vtkInformationVector** inputVector) const;
   ~vtkCBC3DAlgorithm() override = default;
 
   /**
@@ -59,6 +81,7 @@ protected:
   bool ReadLabelImage(vtkInformationVector** inputVector, cbc3d::LabelImage& image);
 
   int ImagePort;
+  bool ImageOptional;
   std::vector<int> BackgroundLabels = { 0 };
   int NumberOfThreads = 0;
 

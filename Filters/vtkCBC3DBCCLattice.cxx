@@ -14,12 +14,6 @@
 
 vtkStandardNewMacro(vtkCBC3DBCCLattice);
 
-int vtkCBC3DBCCLattice::FillInputPortInformation(int, vtkInformation* info)
-{
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
-  return 1;
-}
-
 int vtkCBC3DBCCLattice::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {

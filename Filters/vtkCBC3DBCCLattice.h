@@ -53,7 +53,6 @@ protected:
   vtkCBC3DBCCLattice() = default;
   ~vtkCBC3DBCCLattice() override = default;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 

@@ -22,19 +22,8 @@
 vtkStandardNewMacro(vtkCBC3DDeformation);
 
 vtkCBC3DDeformation::vtkCBC3DDeformation()
-  : vtkCBC3DAlgorithm(1)
+  : vtkCBC3DAlgorithm(ImageInput::Port1)
 {
-  this->SetNumberOfInputPorts(2);
-}
-
-void vtkCBC3DDeformation::SetImageConnection(vtkAlgorithmOutput* output)
-{
-  this->SetInputConnection(1, output);
-}
-
-void vtkCBC3DDeformation::SetImageData(vtkImageData* image)
-{
-  this->SetInputData(1, image);
 }
 
 const char* vtkCBC3DDeformation::GetPatternAsString() const
@@ -56,16 +45,6 @@ void vtkCBC3DDeformation::RemoveAllTissueYoungModuli()
     this->YoungModuli.clear();
     this->Modified();
   }
-}
-
-int vtkCBC3DDeformation::FillInputPortInformation(int port, vtkInformation* info)
-{
-  if (port == 1)
-  {
-    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
-    return 1;
-  }
-  return this->Superclass::FillInputPortInformation(port, info);
 }
 
 int vtkCBC3DDeformation::RequestData(

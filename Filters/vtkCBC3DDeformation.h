@@ -32,22 +32,12 @@
 
 #include <map> // For per-tissue materials
 
-class vtkImageData;
-
 class VTKCBC3DFILTERS_EXPORT vtkCBC3DDeformation : public vtkCBC3DAlgorithm
 {
 public:
   static vtkCBC3DDeformation* New();
   vtkTypeMacro(vtkCBC3DDeformation, vtkCBC3DAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /**
-   * The label image (input port 1, required).
-   */
-  void SetImageConnection(vtkAlgorithmOutput* output);
-  void SetImageData(vtkImageData* image);
-  ///@}
 
   ///@{
   /**
@@ -111,7 +101,6 @@ protected:
   vtkCBC3DDeformation();
   ~vtkCBC3DDeformation() override = default;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 

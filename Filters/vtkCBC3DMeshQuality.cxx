@@ -104,30 +104,8 @@ struct TissueRow
 } // namespace
 
 vtkCBC3DMeshQuality::vtkCBC3DMeshQuality()
-  : vtkCBC3DAlgorithm(1)
+  : vtkCBC3DAlgorithm(ImageInput::OptionalPort1)
 {
-  this->SetNumberOfInputPorts(2);
-}
-
-void vtkCBC3DMeshQuality::SetImageConnection(vtkAlgorithmOutput* output)
-{
-  this->SetInputConnection(1, output);
-}
-
-void vtkCBC3DMeshQuality::SetImageData(vtkImageData* image)
-{
-  this->SetInputData(1, image);
-}
-
-int vtkCBC3DMeshQuality::FillInputPortInformation(int port, vtkInformation* info)
-{
-  if (port == 1)
-  {
-    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
-    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
-    return 1;
-  }
-  return this->Superclass::FillInputPortInformation(port, info);
 }
 
 int vtkCBC3DMeshQuality::RequestData(
@@ -135,7 +113,7 @@ int vtkCBC3DMeshQuality::RequestData(
 {
   vtkUnstructuredGrid* input = vtkUnstructuredGrid::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
-  const bool withImage = inputVector[1]->GetNumberOfInformationObjects() > 0;
+  const bool withImage = this->HasImage(inputVector);
 
   cbc3d::TetMesh mesh;
   std::string error;

@@ -40,8 +40,6 @@
 #include "vtkCBC3DAlgorithm.h"
 #include "vtkCBC3DFiltersModule.h" // For export macro
 
-class vtkImageData;
-
 class VTKCBC3DFILTERS_EXPORT vtkCBC3DMeshQuality : public vtkCBC3DAlgorithm
 {
 public:
@@ -49,19 +47,10 @@ public:
   vtkTypeMacro(vtkCBC3DMeshQuality, vtkCBC3DAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  ///@{
-  /**
-   * The label image to measure the mesh against (input port 1, optional).
-   */
-  void SetImageConnection(vtkAlgorithmOutput* output);
-  void SetImageData(vtkImageData* image);
-  ///@}
-
 protected:
   vtkCBC3DMeshQuality();
   ~vtkCBC3DMeshQuality() override = default;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 

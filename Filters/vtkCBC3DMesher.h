@@ -55,7 +55,6 @@ protected:
   vtkCBC3DMesher() = default;
   ~vtkCBC3DMesher() override = default;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 

@@ -22,29 +22,8 @@
 vtkStandardNewMacro(vtkCBC3DRefinement);
 
 vtkCBC3DRefinement::vtkCBC3DRefinement()
-  : vtkCBC3DAlgorithm(1)
+  : vtkCBC3DAlgorithm(ImageInput::Port1)
 {
-  this->SetNumberOfInputPorts(2);
-}
-
-void vtkCBC3DRefinement::SetImageConnection(vtkAlgorithmOutput* output)
-{
-  this->SetInputConnection(1, output);
-}
-
-void vtkCBC3DRefinement::SetImageData(vtkImageData* image)
-{
-  this->SetInputData(1, image);
-}
-
-int vtkCBC3DRefinement::FillInputPortInformation(int port, vtkInformation* info)
-{
-  if (port == 1)
-  {
-    info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
-    return 1;
-  }
-  return this->Superclass::FillInputPortInformation(port, info);
 }
 
 int vtkCBC3DRefinement::RequestData(

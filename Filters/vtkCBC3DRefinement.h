@@ -32,22 +32,12 @@
 #include "vtkCBC3DAlgorithm.h"
 #include "vtkCBC3DFiltersModule.h" // For export macro
 
-class vtkImageData;
-
 class VTKCBC3DFILTERS_EXPORT vtkCBC3DRefinement : public vtkCBC3DAlgorithm
 {
 public:
   static vtkCBC3DRefinement* New();
   vtkTypeMacro(vtkCBC3DRefinement, vtkCBC3DAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
-
-  ///@{
-  /**
-   * The label image (input port 1, required).
-   */
-  void SetImageConnection(vtkAlgorithmOutput* output);
-  void SetImageData(vtkImageData* image);
-  ///@}
 
   ///@{
   /**
@@ -80,7 +70,6 @@ protected:
   vtkCBC3DRefinement();
   ~vtkCBC3DRefinement() override = default;
 
-  int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 

@@ -1,5 +1,6 @@
 // The lattice filter: output arrays and frame, VTK's own orientation and angle measures,
 // error paths, abort and PrintSelf.
+#include "CBC3DTestUtilities.h"
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DBCCLattice.h"
 #include "vtkCBC3DMeshQuality.h"
@@ -29,28 +30,6 @@
 
 namespace
 {
-int failures = 0;
-#define CHECK(condition)                                                                         \
-  do                                                                                             \
-  {                                                                                              \
-    if (!(condition))                                                                            \
-    {                                                                                            \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #condition << std::endl;   \
-      ++failures;                                                                                \
-    }                                                                                            \
-  } while (false)
-
-class ErrorCatcher : public vtkCommand
-{
-public:
-  static ErrorCatcher* New() { return new ErrorCatcher; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    this->Text += data ? static_cast<const char*>(data) : "";
-  }
-  std::string Text;
-};
-
 // A ball of radius 6 mm in a 20^3 image with the given array type; the label is decided in
 // world space.
 template <typename ArrayT>
@@ -84,7 +63,7 @@ const double reflection[9] = { 0.8660254037844387, 0.5, 0, 0.5, -0.8660254037844
 std::string RunExpectingError(vtkImageData* image, double edge = 0.0)
 {
   vtkNew<vtkCBC3DBCCLattice> lattice;
-  vtkNew<ErrorCatcher> catcher;
+  vtkNew<cbc3dtest::MessageCatcher> catcher;
   lattice->AddObserver(vtkCommand::ErrorEvent, catcher);
   lattice->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, catcher);
   lattice->SetInputData(image);
@@ -199,7 +178,7 @@ void TestInputs()
   // A background list that makes label 3 background leaves no tissue.
   {
     vtkNew<vtkCBC3DBCCLattice> lattice;
-    vtkNew<ErrorCatcher> catcher;
+    vtkNew<cbc3dtest::MessageCatcher> catcher;
     lattice->AddObserver(vtkCommand::ErrorEvent, catcher);
     lattice->SetInputData(MakeBall<vtkIntArray>(3, identity));
     lattice->SetBackgroundLabel(3);
@@ -224,7 +203,7 @@ void TestInputs()
     image->GetPointData()->SetScalars(MakeBall<vtkIntArray>(1, identity)->GetPointData()->GetScalars());
     {
       vtkNew<vtkCBC3DBCCLattice> lattice;
-      vtkNew<ErrorCatcher> catcher;
+      vtkNew<cbc3dtest::MessageCatcher> catcher;
       lattice->AddObserver(vtkCommand::ErrorEvent, catcher);
       lattice->SetInputData(image);
       lattice->SetInputArrayToProcess(0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, "Nope");
@@ -265,6 +244,5 @@ int TestCBC3DBCCLattice(int, char*[])
   TestTopologyMatchesVTK();
   TestInputs();
   TestAbort();
-  std::cout << (failures ? "FAILED" : "passed") << " with " << failures << " failed checks" << std::endl;
-  return failures == 0 ? 0 : 1;
+  return cbc3dtest::Finish();
 }

@@ -1,4 +1,5 @@
 // The deformation filter: moved points and Displacement, field data, error paths, PrintSelf.
+#include "CBC3DTestUtilities.h"
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DBCCLattice.h"
 #include "vtkCBC3DDeformation.h"
@@ -16,31 +17,6 @@
 #include <iostream>
 #include <sstream>
 #include <string>
-
-namespace
-{
-int failures = 0;
-#define CHECK(condition)                                                                         \
-  do                                                                                             \
-  {                                                                                              \
-    if (!(condition))                                                                            \
-    {                                                                                            \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #condition << std::endl;   \
-      ++failures;                                                                                \
-    }                                                                                            \
-  } while (false)
-
-class ErrorCatcher : public vtkCommand
-{
-public:
-  static ErrorCatcher* New() { return new ErrorCatcher; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    this->Text += data ? static_cast<const char*>(data) : "";
-  }
-  std::string Text;
-};
-} // namespace
 
 int TestCBC3DDeformation(int, char*[])
 {
@@ -96,7 +72,7 @@ int TestCBC3DDeformation(int, char*[])
   CHECK(printed.str().find("Pattern: Face") != std::string::npos);
   CHECK(std::string(deformation->GetPatternAsString()) == "Face");
 
-  vtkNew<ErrorCatcher> errors;
+  vtkNew<cbc3dtest::MessageCatcher> errors;
   deformation->AddObserver(vtkCommand::ErrorEvent, errors);
   deformation->SetPoissonRatio(0.5);
   deformation->Update();
@@ -107,6 +83,5 @@ int TestCBC3DDeformation(int, char*[])
   deformation->Update();
   CHECK(errors->Text.find("Young") != std::string::npos);
 
-  std::cout << (failures ? "FAILED" : "passed") << " with " << failures << " failed checks" << std::endl;
-  return failures == 0 ? 0 : 1;
+  return cbc3dtest::Finish();
 }

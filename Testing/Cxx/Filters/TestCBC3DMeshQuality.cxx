@@ -1,5 +1,6 @@
 // The quality filter against known answers: angles of a regular tet, a BCC tet and a sliver;
 // the Hausdorff distance of a voxel block meshed at its voxel corners; a lost tissue.
+#include "CBC3DTestUtilities.h"
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DMeshQuality.h"
 
@@ -23,32 +24,10 @@
 
 namespace
 {
-int failures = 0;
-#define CHECK(condition)                                                                         \
-  do                                                                                             \
-  {                                                                                              \
-    if (!(condition))                                                                            \
-    {                                                                                            \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #condition << std::endl;   \
-      ++failures;                                                                                \
-    }                                                                                            \
-  } while (false)
-
 bool Near(double a, double b, double tolerance = 1e-9)
 {
   return std::abs(a - b) <= tolerance;
 }
-
-class MessageCatcher : public vtkCommand
-{
-public:
-  static MessageCatcher* New() { return new MessageCatcher; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    this->Text += data ? static_cast<const char*>(data) : "";
-  }
-  std::string Text;
-};
 
 vtkSmartPointer<vtkUnstructuredGrid> MakeMesh(const std::vector<std::array<double, 3>>& points,
   const std::vector<std::array<vtkIdType, 4>>& tets, const std::vector<int>& labels)
@@ -177,7 +156,7 @@ void TestBlockHausdorff()
   // A second tissue in the image that the mesh lost: NaN for it and for the mesh, a warning.
   labels->SetTuple1(0, 7);
   image->Modified();
-  vtkNew<MessageCatcher> warnings;
+  vtkNew<cbc3dtest::MessageCatcher> warnings;
   quality->AddObserver(vtkCommand::WarningEvent, warnings);
   quality->Update();
   out = quality->GetOutput();
@@ -194,7 +173,7 @@ void TestBadInput()
   auto mesh = MakeMesh({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } }, { { 0, 1, 2, 3 } }, { 1 });
   mesh->GetCellData()->RemoveArray(vtkCBC3DArrayNames::Label);
   vtkNew<vtkCBC3DMeshQuality> quality;
-  vtkNew<MessageCatcher> errors;
+  vtkNew<cbc3dtest::MessageCatcher> errors;
   quality->AddObserver(vtkCommand::ErrorEvent, errors);
   quality->SetInputData(mesh);
   quality->Update();
@@ -208,6 +187,5 @@ int TestCBC3DMeshQuality(int, char*[])
   TestAngles();
   TestBlockHausdorff();
   TestBadInput();
-  std::cout << (failures ? "FAILED" : "passed") << " with " << failures << " failed checks" << std::endl;
-  return failures == 0 ? 0 : 1;
+  return cbc3dtest::Finish();
 }

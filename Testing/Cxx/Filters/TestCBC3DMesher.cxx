@@ -1,5 +1,6 @@
 // The one-shot mesher: every stage's arrays in one output, errors named by stage, and a stop
 // request that ends the run early with an empty output.
+#include "CBC3DTestUtilities.h"
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DMesher.h"
 
@@ -20,28 +21,6 @@
 
 namespace
 {
-int failures = 0;
-#define CHECK(condition)                                                                         \
-  do                                                                                             \
-  {                                                                                              \
-    if (!(condition))                                                                            \
-    {                                                                                            \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #condition << std::endl;   \
-      ++failures;                                                                                \
-    }                                                                                            \
-  } while (false)
-
-class ErrorCatcher : public vtkCommand
-{
-public:
-  static ErrorCatcher* New() { return new ErrorCatcher; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    this->Text += data ? static_cast<const char*>(data) : "";
-  }
-  std::string Text;
-};
-
 // Nested shells: a ball of label 3 inside a shell of label 5, in 1 mm voxels.
 vtkSmartPointer<vtkImageData> Shells(int n)
 {
@@ -114,12 +93,11 @@ int TestCBC3DMesher(int, char*[])
   empty->AllocateScalars(VTK_INT, 1);
   empty->GetPointData()->GetScalars()->Fill(0);
   vtkNew<vtkCBC3DMesher> failing;
-  vtkNew<ErrorCatcher> errors;
+  vtkNew<cbc3dtest::MessageCatcher> errors;
   failing->AddObserver(vtkCommand::ErrorEvent, errors);
   failing->SetInputData(empty);
   failing->Update();
   CHECK(errors->Text.find("BCC lattice: the image has no tissue") != std::string::npos);
 
-  std::cout << (failures ? "FAILED" : "passed") << " with " << failures << " failed checks" << std::endl;
-  return failures == 0 ? 0 : 1;
+  return cbc3dtest::Finish();
 }

@@ -1,4 +1,5 @@
 // The refinement filter: output arrays, fidelity in field data, error paths and PrintSelf.
+#include "CBC3DTestUtilities.h"
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DBCCLattice.h"
 #include "vtkCBC3DRefinement.h"
@@ -21,28 +22,6 @@
 
 namespace
 {
-int failures = 0;
-#define CHECK(condition)                                                                         \
-  do                                                                                             \
-  {                                                                                              \
-    if (!(condition))                                                                            \
-    {                                                                                            \
-      std::cerr << __FILE__ << ":" << __LINE__ << ": check failed: " #condition << std::endl;   \
-      ++failures;                                                                                \
-    }                                                                                            \
-  } while (false)
-
-class ErrorCatcher : public vtkCommand
-{
-public:
-  static ErrorCatcher* New() { return new ErrorCatcher; }
-  void Execute(vtkObject*, unsigned long, void* data) override
-  {
-    this->Text += data ? static_cast<const char*>(data) : "";
-  }
-  std::string Text;
-};
-
 // Two boxes of labels 4 and 9 that share a face, in 1 mm voxels.
 vtkSmartPointer<vtkImageData> TwoBoxes()
 {
@@ -116,7 +95,7 @@ int TestCBC3DRefinement(int, char*[])
 
   // A fidelity out of range and a mesh without labels are errors with an empty output.
   {
-    vtkNew<ErrorCatcher> errors;
+    vtkNew<cbc3dtest::MessageCatcher> errors;
     refinement->AddObserver(vtkCommand::ErrorEvent, errors);
     refinement->SetFidelity(1.5);
     refinement->Update();
@@ -128,13 +107,12 @@ int TestCBC3DRefinement(int, char*[])
     unlabelled->DeepCopy(lattice->GetOutput());
     unlabelled->GetCellData()->RemoveArray(vtkCBC3DArrayNames::Label);
     vtkNew<vtkCBC3DRefinement> other;
-    vtkNew<ErrorCatcher> errors;
+    vtkNew<cbc3dtest::MessageCatcher> errors;
     other->AddObserver(vtkCommand::ErrorEvent, errors);
     other->SetInputData(unlabelled);
     other->SetImageData(image);
     other->Update();
     CHECK(errors->Text.find("Label") != std::string::npos);
   }
-  std::cout << (failures ? "FAILED" : "passed") << " with " << failures << " failed checks" << std::endl;
-  return failures == 0 ? 0 : 1;
+  return cbc3dtest::Finish();
 }
