@@ -235,11 +235,14 @@ public:
     for (const Tissue& tissue : this->Tissues)
     {
       const double limit = tissue.Hausdorff * (1.0 + 1e-12);
-      for (const PointId v : tissue.Vertices)
+      const std::int64_t vertexCount = static_cast<std::int64_t>(tissue.Vertices.size());
+#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
+      for (std::int64_t i = 0; i < vertexCount; ++i)
       {
+        const PointId v = tissue.Vertices[i];
         if (share[v] > 0.0 && tissue.Grid->Nearest(trial[v], limit, [](int) { return true; }) < 0)
         {
-          hold[v] = 1;
+          hold[v] = 1; // each vertex appears once in a tissue's list
         }
       }
       std::vector<Eigen::Vector3d> before, after;
@@ -249,13 +252,17 @@ public:
         after.push_back(trial[v]);
       }
       const PointGrid beforeGrid(before, this->Cell), afterGrid(after, this->Cell);
-      for (const Eigen::Vector3d& voxel : tissue.Voxels)
+      const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Voxels.size());
+#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
+      for (std::int64_t i = 0; i < voxelCount; ++i)
       {
+        const Eigen::Vector3d& voxel = tissue.Voxels[i];
         if (afterGrid.Nearest(voxel, limit, [](int) { return true; }) < 0)
         {
           const int covering = beforeGrid.Nearest(voxel, limit, [](int) { return true; });
           if (covering >= 0 && share[tissue.Vertices[covering]] > 0.0)
           {
+#pragma omp atomic write
             hold[tissue.Vertices[covering]] = 1;
           }
         }
@@ -302,15 +309,17 @@ private:
     const PointGrid vertexGrid(vertices, this->Cell);
     auto farthest = [this](const std::vector<Eigen::Vector3d>& from, const PointGrid& to,
                       const std::vector<Eigen::Vector3d>& toPoints) {
-      double worst = 0.0;
-      for (const Eigen::Vector3d& p : from)
+      double worst = 0.0; // a max reduction is exact: the same for any thread count
+      const std::int64_t count = static_cast<std::int64_t>(from.size());
+#pragma omp parallel for schedule(dynamic, 256) reduction(max : worst) num_threads(ThreadCount(this->Threads))
+      for (std::int64_t i = 0; i < count; ++i)
       {
         int nearest = -1;
         for (double radius = this->Cell; nearest < 0 && radius < 1e9; radius *= 2.0)
         {
-          nearest = to.Nearest(p, radius, [](int) { return true; });
+          nearest = to.Nearest(from[i], radius, [](int) { return true; });
         }
-        worst = std::max(worst, nearest < 0 ? 0.0 : (toPoints[nearest] - p).norm());
+        worst = std::max(worst, nearest < 0 ? 0.0 : (toPoints[nearest] - from[i]).norm());
       }
       return worst;
     };
@@ -390,7 +399,8 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   }
   const double cell = std::max(2.0 * largestSize, 1e-6);
   const PointGrid targetGrid(targetPoints, cell);
-  FidelityGuard fidelity(image, mesh, cell, threads);
+  // Boundary voxels are dense: a grid of a few voxels per cell keeps each query short.
+  FidelityGuard fidelity(image, mesh, 2.0 * image.Spacing.maxCoeff(), threads);
   const Eigen::SparseMatrix<double> stiffness =
     AssembleStiffness(mesh, params.Materials, params.DefaultMaterial, threads);
   if (progress && !progress(0.1))
@@ -491,7 +501,16 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     {
       system.coeffRef(i, i) += springs[i] + 1e-6 * stiffness.coeff(i, i);
     }
-    cg.compute(system);
+    if (progress && !progress(0.1 + 0.9 * double(iteration) / params.Iterations))
+    {
+      return Status::Aborted();
+    }
+    // Only the diagonal changes between iterations: order the preconditioner once.
+    if (iteration == 0)
+    {
+      cg.analyzePattern(system);
+    }
+    cg.factorize(system);
     du = cg.solveWithGuess(rhs, du);
     if (std::getenv("CBC3D_DEBUG"))
     {
@@ -506,8 +525,13 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     std::vector<Eigen::Vector3d> trial(x.size());
     std::vector<double> share(x.size(), 1.0);
     std::vector<std::int64_t> bad;
+    const double done = 0.1 + 0.9 * double(iteration) / params.Iterations;
     for (int round = 0; round < 50; ++round)
     {
+      if (progress && !progress(done))
+      {
+        return Status::Aborted();
+      }
       for (std::size_t p = 0; p < x.size(); ++p)
       {
         trial[p] = x[p] + share[p] * du.segment<3>(3 * p);

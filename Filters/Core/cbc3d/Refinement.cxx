@@ -6,6 +6,8 @@
 #include "cbc3d/TissueComponents.h"
 
 #include <algorithm>
+#include <atomic>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -32,9 +34,11 @@ struct LabelledMesh
   std::vector<std::int32_t> VoxelOwner; // final tet owning each voxel centre, or -1
 };
 
-void SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threads,
-  LabelledMesh& mesh)
+// Returns false when `keepGoing` (polled from thread 0) asked to stop.
+bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threads,
+  LabelledMesh& mesh, const std::function<bool()>& keepGoing)
 {
+  std::atomic<bool> stop(false);
   hierarchy.BuildConforming(mesh.Tets, mesh.Source);
   const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
   mesh.Counts.resize(count);
@@ -45,6 +49,14 @@ void SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threa
 #pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(threads))
   for (std::int64_t t = 0; t < count; ++t)
   {
+    if (stop.load(std::memory_order_relaxed))
+    {
+      continue;
+    }
+    if (ThreadId() == 0 && t % 4096 == 0 && !keepGoing())
+    {
+      stop.store(true);
+    }
     const Tet& tet = mesh.Tets[t];
     mesh.HoldsVoxelCentres[t] = 1 ==
       SampleTetLabels(image, { points[tet[0]], points[tet[1]], points[tet[2]], points[tet[3]] },
@@ -53,6 +65,7 @@ void SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threa
     mesh.Counts[t].Majority(label);
     mesh.Labels[t] = label;
   }
+  return !stop.load();
 }
 
 // F1 and F2 of every tissue, and its components kept in the mesh.
@@ -149,12 +162,13 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   for (int pass = 0;; ++pass)
   {
     hierarchy.Close();
-    SampleAll(image, hierarchy, params.NumberOfThreads, mesh);
-    fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
-    if (progress && !progress(std::min(0.95, double(pass + 1) / double(expectedPasses + 1))))
+    const double done = std::min(0.95, double(pass + 1) / double(expectedPasses + 1));
+    if (!SampleAll(image, hierarchy, params.NumberOfThreads, mesh,
+          [&] { return !progress || progress(done); }))
     {
       return Status::Aborted();
     }
+    fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
     if (params.Fidelity == 0.0)
     {
       result.StopReason = "no refinement asked (fidelity 0)";
