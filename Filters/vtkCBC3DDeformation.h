@@ -79,7 +79,7 @@ public:
 
   ///@{
   /**
-   * Quality guard in degrees (default 10): no step makes a dihedral angle smaller than this or
+   * Quality guard in degrees (default 20): no step makes a dihedral angle smaller than this or
    * larger than 180 minus it; inverted tets are never made.
    */
   vtkSetMacro(MinimumDihedralAngle, double);
@@ -107,7 +107,7 @@ protected:
   int Iterations = 5;
   int Pattern = EDGE;
   double Penalty = 10.0;
-  double MinimumDihedralAngle = 10.0;
+  double MinimumDihedralAngle = 20.0;
   double PoissonRatio = 0.3;
   std::map<int, double> YoungModuli;
 

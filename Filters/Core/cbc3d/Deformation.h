@@ -26,7 +26,7 @@ struct DeformationParams
   double Penalty = 10.0;
   /// No step may leave a tet with a dihedral angle under this (degrees) or over 180 minus it:
   /// vertices of such tets keep their place for that step (inverted tets are never made).
-  double MinimumDihedralAngle = 10.0;
+  double MinimumDihedralAngle = 20.0;
   /// Materials per tissue label; others get DefaultMaterial.
   std::map<std::int32_t, Material> Materials;
   Material DefaultMaterial;

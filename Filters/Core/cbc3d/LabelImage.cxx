@@ -10,12 +10,6 @@
 
 namespace cbc3d
 {
-bool LabelImage::IsBackground(std::int32_t label) const
-{
-  return std::find(this->BackgroundLabels.begin(), this->BackgroundLabels.end(), label) !=
-    this->BackgroundLabels.end();
-}
-
 Eigen::Vector3d LabelImage::IndexToWorld(const Eigen::Vector3d& index) const
 {
   return this->Origin + this->Direction * index.cwiseProduct(this->Spacing);
@@ -97,19 +91,31 @@ bool TissueIndexBounds(const LabelImage& image, std::array<int, 3>& lower,
   const auto& d = image.Dimensions;
   lower = { d[0], d[1], d[2] };
   upper = { -1, -1, -1 };
-  for (int k = 0; k < d[2]; ++k)
+  // Slices in parallel; min and max merge exactly, so the box is the same for any thread count.
+#pragma omp parallel
   {
-    for (int j = 0; j < d[1]; ++j)
+    std::array<int, 3> lo = { d[0], d[1], d[2] }, hi = { -1, -1, -1 };
+#pragma omp for schedule(static) nowait
+    for (int k = 0; k < d[2]; ++k)
     {
-      const std::int32_t* row = image.Labels.data() + image.VoxelIndex(0, j, k);
-      for (int i = 0; i < d[0]; ++i)
+      for (int j = 0; j < d[1]; ++j)
       {
-        if (image.IsTissue(row[i]))
+        const std::int32_t* row = image.Labels.data() + image.VoxelIndex(0, j, k);
+        for (int i = 0; i < d[0]; ++i)
         {
-          lower = { std::min(lower[0], i), std::min(lower[1], j), std::min(lower[2], k) };
-          upper = { std::max(upper[0], i), std::max(upper[1], j), std::max(upper[2], k) };
+          if (image.IsTissue(row[i]))
+          {
+            lo = { std::min(lo[0], i), std::min(lo[1], j), std::min(lo[2], k) };
+            hi = { std::max(hi[0], i), std::max(hi[1], j), std::max(hi[2], k) };
+          }
         }
       }
+    }
+#pragma omp critical
+    for (int a = 0; a < 3; ++a)
+    {
+      lower[a] = std::min(lower[a], lo[a]);
+      upper[a] = std::max(upper[a], hi[a]);
     }
   }
   return upper[0] >= 0;

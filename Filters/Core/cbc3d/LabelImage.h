@@ -34,7 +34,22 @@ struct LabelImage
     return i + std::int64_t(this->Dimensions[0]) * (j + std::int64_t(this->Dimensions[1]) * k);
   }
   std::int32_t LabelAt(int i, int j, int k) const { return this->Labels[this->VoxelIndex(i, j, k)]; }
-  bool IsBackground(std::int32_t label) const;
+  bool IsBackground(std::int32_t label) const
+  {
+    // One background label is the common case: no loop for it.
+    if (this->BackgroundLabels.size() == 1)
+    {
+      return label == this->BackgroundLabels[0];
+    }
+    for (const std::int32_t background : this->BackgroundLabels)
+    {
+      if (label == background)
+      {
+        return true;
+      }
+    }
+    return false;
+  }
   bool IsTissue(std::int32_t label) const { return !this->IsBackground(label); }
 
   /// Continuous index (i,j,k) to world, and back.
