@@ -3,12 +3,14 @@
 #include "vtkCBC3DConvert.h"
 
 #include "cbc3d/LabelImage.h"
+#include "cbc3d/TetMesh.h"
 
 #include <vtkDataObject.h>
 #include <vtkDataSetAttributes.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
 
@@ -93,6 +95,17 @@ bool vtkCBC3DAlgorithm::ReadLabelImage(vtkInformationVector** inputVector, cbc3d
     vtkCBC3DConvert::ChooseLabelArray(this->GetInputArrayInformation(0), input);
   std::string error;
   if (!vtkCBC3DConvert::ToLabelImage(input, labels, this->BackgroundLabels, image, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  return true;
+}
+
+bool vtkCBC3DAlgorithm::ReadMesh(vtkInformationVector** inputVector, cbc3d::TetMesh& mesh)
+{
+  std::string error;
+  if (!vtkCBC3DConvert::FromUnstructuredGrid(vtkUnstructuredGrid::GetData(inputVector[0]), mesh, error))
   {
     vtkErrorMacro(<< error);
     return false;

@@ -23,6 +23,7 @@ class vtkImageData;
 namespace cbc3d
 {
 struct LabelImage;
+struct TetMesh;
 }
 
 class VTKCBC3DFILTERS_EXPORT vtkCBC3DAlgorithm : public vtkUnstructuredGridAlgorithm
@@ -79,6 +80,12 @@ protected:
    * with vtkErrorMacro and returns false.
    */
   bool ReadLabelImage(vtkInformationVector** inputVector, cbc3d::LabelImage& image);
+
+  /**
+   * Reads the labelled tet mesh on port 0 (filters whose image is on port 1). On failure
+   * reports the problem with vtkErrorMacro and returns false.
+   */
+  bool ReadMesh(vtkInformationVector** inputVector, cbc3d::TetMesh& mesh);
 
   int ImagePort;
   bool ImageOptional;

@@ -53,10 +53,8 @@ int vtkCBC3DDeformation::RequestData(
   vtkUnstructuredGrid* input = vtkUnstructuredGrid::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
   cbc3d::TetMesh mesh;
-  std::string error;
-  if (!vtkCBC3DConvert::FromUnstructuredGrid(input, mesh, error))
+  if (!this->ReadMesh(inputVector, mesh))
   {
-    vtkErrorMacro(<< error);
     return 0;
   }
   cbc3d::LabelImage image;

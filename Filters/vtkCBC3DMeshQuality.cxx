@@ -116,10 +116,8 @@ int vtkCBC3DMeshQuality::RequestData(
   const bool withImage = this->HasImage(inputVector);
 
   cbc3d::TetMesh mesh;
-  std::string error;
-  if (!vtkCBC3DConvert::FromUnstructuredGrid(input, mesh, error))
+  if (!this->ReadMesh(inputVector, mesh))
   {
-    vtkErrorMacro(<< error);
     return 0;
   }
   cbc3d::LabelImage image;

@@ -32,10 +32,8 @@ int vtkCBC3DRefinement::RequestData(
   vtkUnstructuredGrid* input = vtkUnstructuredGrid::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
   cbc3d::TetMesh lattice;
-  std::string error;
-  if (!vtkCBC3DConvert::FromUnstructuredGrid(input, lattice, error))
+  if (!this->ReadMesh(inputVector, lattice))
   {
-    vtkErrorMacro(<< error);
     return 0;
   }
   cbc3d::LabelImage image;
