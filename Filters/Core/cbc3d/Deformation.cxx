@@ -415,7 +415,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     Eigen::IncompleteCholesky<double>>
     cg;
   cg.setTolerance(1e-6);
-  cg.setMaxIterations(1000);
+  cg.setMaxIterations(50); // per call: the solve runs in chunks so that a stop is seen soon
   std::vector<Eigen::Vector3d>& x = out.Points;
   Eigen::VectorXd du = Eigen::VectorXd::Zero(stiffness.rows());
   for (int iteration = 0; iteration < params.Iterations; ++iteration)
@@ -511,7 +511,18 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
       cg.analyzePattern(system);
     }
     cg.factorize(system);
-    du = cg.solveWithGuess(rhs, du);
+    for (int chunk = 0; chunk < 20; ++chunk)
+    {
+      du = cg.solveWithGuess(rhs, du);
+      if (cg.info() == Eigen::Success)
+      {
+        break;
+      }
+      if (progress && !progress(0.1 + 0.9 * double(iteration) / params.Iterations))
+      {
+        return Status::Aborted();
+      }
+    }
     if (std::getenv("CBC3D_DEBUG"))
     {
       Eigen::Index worst = 0;
