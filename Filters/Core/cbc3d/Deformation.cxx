@@ -371,8 +371,18 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   }();
   const double bound = std::min(minimumRadians, startingMinimum);
 
+  // Setting up takes seconds on large meshes: look for a stop request between the steps.
+  auto stopped = [&progress](double fraction) { return progress && !progress(fraction); };
   const Sources sources = FindSources(mesh);
+  if (stopped(0.02))
+  {
+    return Status::Aborted();
+  }
   const std::vector<BoundaryTarget> targets = FindBoundaryTargets(image, params.Pattern);
+  if (stopped(0.04))
+  {
+    return Status::Aborted();
+  }
   result.Sources = sources.Points.size();
   result.Targets = targets.size();
   if (sources.Points.empty() || targets.empty())
@@ -401,6 +411,10 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   const PointGrid targetGrid(targetPoints, cell);
   // Boundary voxels are dense: a grid of a few voxels per cell keeps each query short.
   FidelityGuard fidelity(image, mesh, 2.0 * image.Spacing.maxCoeff(), threads);
+  if (stopped(0.07))
+  {
+    return Status::Aborted();
+  }
   const Eigen::SparseMatrix<double> stiffness =
     AssembleStiffness(mesh, params.Materials, params.DefaultMaterial, threads);
   if (progress && !progress(0.1))
