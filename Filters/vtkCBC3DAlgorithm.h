@@ -87,6 +87,13 @@ protected:
    */
   bool ReadMesh(vtkInformationVector** inputVector, cbc3d::TetMesh& mesh);
 
+  /// ReadMesh, then ReadLabelImage: the inputs of the filters that refine or move a mesh.
+  bool ReadMeshAndImage(
+    vtkInformationVector** inputVector, cbc3d::TetMesh& mesh, cbc3d::LabelImage& image)
+  {
+    return this->ReadMesh(inputVector, mesh) && this->ReadLabelImage(inputVector, image);
+  }
+
   int ImagePort;
   bool ImageOptional;
   std::vector<int> BackgroundLabels = { 0 };

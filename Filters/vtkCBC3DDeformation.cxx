@@ -53,12 +53,8 @@ int vtkCBC3DDeformation::RequestData(
   vtkUnstructuredGrid* input = vtkUnstructuredGrid::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
   cbc3d::TetMesh mesh;
-  if (!this->ReadMesh(inputVector, mesh))
-  {
-    return 0;
-  }
   cbc3d::LabelImage image;
-  if (!this->ReadLabelImage(inputVector, image))
+  if (!this->ReadMeshAndImage(inputVector, mesh, image))
   {
     return 0;
   }

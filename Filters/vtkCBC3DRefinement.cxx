@@ -32,12 +32,8 @@ int vtkCBC3DRefinement::RequestData(
   vtkUnstructuredGrid* input = vtkUnstructuredGrid::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
   cbc3d::TetMesh lattice;
-  if (!this->ReadMesh(inputVector, lattice))
-  {
-    return 0;
-  }
   cbc3d::LabelImage image;
-  if (!this->ReadLabelImage(inputVector, image))
+  if (!this->ReadMeshAndImage(inputVector, lattice, image))
   {
     return 0;
   }
