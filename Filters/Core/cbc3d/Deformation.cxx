@@ -422,11 +422,12 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     return Status::Aborted();
   }
   // (K + P) du = P d: K the stiffness, P the springs tying each matched source to its goal.
-  // Conjugate gradients with an incomplete Cholesky preconditioner, warm-started from the
-  // previous step. (A sparse direct factorisation was measured 20 times slower here: 3-D
-  // meshes fill in badly.)
+  // Conjugate gradients with a diagonal preconditioner, warm-started from the previous step.
+  // (Measured on the brain and the k-means head: twice as fast as an incomplete-Cholesky
+  // preconditioner, in less memory and to the same result; a sparse direct factorisation was
+  // 20 times slower: 3-D meshes fill in badly.)
   Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
-    Eigen::IncompleteCholesky<double>>
+    Eigen::DiagonalPreconditioner<double>>
     cg;
   cg.setTolerance(1e-6);
   cg.setMaxIterations(50); // per call: the solve runs in chunks so that a stop is seen soon
@@ -519,12 +520,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     {
       return Status::Aborted();
     }
-    // Only the diagonal changes between iterations: order the preconditioner once.
-    if (iteration == 0)
-    {
-      cg.analyzePattern(system);
-    }
-    cg.factorize(system);
+    cg.compute(system);
     for (int chunk = 0; chunk < 20; ++chunk)
     {
       du = cg.solveWithGuess(rhs, du);

@@ -65,7 +65,8 @@ bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threa
     mesh.Counts[t].Majority(label);
     mesh.Labels[t] = label;
   }
-  return !stop.load();
+  // Thread 0 may have had no turn to poll (a small mesh, a busy machine): ask once more.
+  return !stop.load() && keepGoing();
 }
 
 // F1 and F2 of every tissue, and its components kept in the mesh.
