@@ -1,0 +1,172 @@
+// A peer for the benchmark, never part of the library or plugin: meshes a label image with
+// CGAL Mesh_3 (Labeled_mesh_domain_3, the CBC3D paper's CGAL settings), puts the mesh in the
+// image's world frame, and measures it with vtkCBC3DMeshQuality, the ruler cbc3d uses.
+//   CBC3DCGALMesh3 IMAGE.nii.gz OUT.vtu [--background L] [--deterministic]
+// --deterministic turns off the time limits of CGAL's perturber and exuder, whose default
+// (the refinement's own time) makes the result depend on the machine's load.
+#include "vtkCBC3DArrayNames.h"
+#include "vtkCBC3DMeshQuality.h"
+#include "vtkCBC3DNIfTIReader.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Image_3.h>
+#include <CGAL/Labeled_mesh_domain_3.h>
+#include <CGAL/Mesh_complex_3_in_triangulation_3.h>
+#include <CGAL/Mesh_criteria_3.h>
+#include <CGAL/Mesh_triangulation_3.h>
+#include <CGAL/make_mesh_3.h>
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkImageData.h>
+#include <vtkIntArray.h>
+#include <vtkMatrix3x3.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkTetra.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Domain = CGAL::Labeled_mesh_domain_3<Kernel>;
+using Triangulation = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
+using Complex = CGAL::Mesh_complex_3_in_triangulation_3<Triangulation>;
+using Criteria = CGAL::Mesh_criteria_3<Triangulation>;
+
+int main(int argc, char* argv[])
+{
+  if (argc < 3)
+  {
+    std::fprintf(stderr, "usage: CBC3DCGALMesh3 IMAGE.nii.gz OUT.vtu [--background L] [--deterministic]\n");
+    return 2;
+  }
+  int background = 0;
+  bool deterministic = false;
+  for (int i = 3; i < argc; ++i)
+  {
+    if (std::strcmp(argv[i], "--background") == 0 && i + 1 < argc)
+      background = std::atoi(argv[++i]);
+    else if (std::strcmp(argv[i], "--deterministic") == 0)
+      deterministic = true;
+  }
+  vtkNew<vtkCBC3DNIfTIReader> reader;
+  reader->SetFileName(argv[1]);
+  reader->Update();
+  vtkImageData* image = reader->GetOutput();
+  vtkDataArray* labels = image->GetPointData()->GetScalars();
+  if (!labels)
+  {
+    std::fprintf(stderr, "cannot read %s\n", argv[1]);
+    return 1;
+  }
+  // CGAL's domain calls 0 outside: background becomes 0, and a tissue labelled 0 (possible
+  // with another background) gets a free code that is mapped back afterwards.
+  int dims[3];
+  image->GetDimensions(dims);
+  const double* spacing = image->GetSpacing();
+  std::map<int, int> codeOfLabel, labelOfCode;
+  _image* raw = _createImage(dims[0], dims[1], dims[2], 1, spacing[0], spacing[1], spacing[2], 2,
+    WK_FIXED, SGN_UNSIGNED);
+  auto* data = static_cast<std::uint16_t*>(raw->data);
+  for (vtkIdType v = 0; v < labels->GetNumberOfTuples(); ++v)
+  {
+    const int label = static_cast<int>(labels->GetTuple1(v));
+    if (label == background)
+    {
+      data[v] = 0;
+      continue;
+    }
+    auto found = codeOfLabel.find(label);
+    if (found == codeOfLabel.end())
+    {
+      const int code = static_cast<int>(codeOfLabel.size()) + 1;
+      found = codeOfLabel.emplace(label, code).first;
+      labelOfCode[code] = label;
+    }
+    data[v] = static_cast<std::uint16_t>(found->second);
+  }
+  CGAL::Image_3 cgalImage(raw);
+  Domain domain = Domain::create_labeled_image_mesh_domain(cgalImage);
+  namespace p = CGAL::parameters;
+  Criteria criteria(p::facet_angle = 30, p::facet_size = 2, p::facet_distance = 2,
+    p::cell_radius_edge_ratio = 1.5, p::cell_size = 2.5);
+  const auto start = std::chrono::steady_clock::now();
+  Complex complex = deterministic
+    ? CGAL::make_mesh_3<Complex>(domain, criteria, p::perturb(p::time_limit = 0), p::exude(p::time_limit = 0))
+    : CGAL::make_mesh_3<Complex>(domain, criteria);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  // Into the image's world frame: CGAL's point is spacing .* index, as vtkImageData's before
+  // its origin and direction.
+  const double* origin = image->GetOrigin();
+  vtkMatrix3x3* direction = image->GetDirectionMatrix();
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  std::map<Triangulation::Vertex_handle, vtkIdType> ids;
+  vtkNew<vtkUnstructuredGrid> mesh;
+  vtkNew<vtkIntArray> tetLabels;
+  tetLabels->SetName(vtkCBC3DArrayNames::Label);
+  for (auto cell = complex.cells_in_complex_begin(); cell != complex.cells_in_complex_end(); ++cell)
+  {
+    vtkIdType tet[4];
+    double x[4][3];
+    for (int v = 0; v < 4; ++v)
+    {
+      const auto vertex = cell->vertex(v);
+      auto found = ids.find(vertex);
+      if (found == ids.end())
+      {
+        const auto q = vertex->point().point();
+        const double local[3] = { q.x(), q.y(), q.z() };
+        double world[3];
+        for (int r = 0; r < 3; ++r)
+          world[r] = origin[r] + direction->GetElement(r, 0) * local[0] + direction->GetElement(r, 1) * local[1] +
+            direction->GetElement(r, 2) * local[2];
+        found = ids.emplace(vertex, points->InsertNextPoint(world)).first;
+      }
+      tet[v] = found->second;
+      points->GetPoint(tet[v], x[v]);
+    }
+    if (vtkTetra::ComputeVolume(x[0], x[1], x[2], x[3]) < 0)
+      std::swap(tet[2], tet[3]);
+    mesh->InsertNextCell(VTK_TETRA, 4, tet);
+    tetLabels->InsertNextValue(labelOfCode[static_cast<int>(complex.subdomain_index(cell))]);
+  }
+  mesh->SetPoints(points);
+  mesh->GetCellData()->AddArray(tetLabels);
+
+  vtkNew<vtkCBC3DMeshQuality> quality;
+  quality->SetInputData(mesh);
+  quality->SetImageData(image);
+  quality->SetBackgroundLabel(background);
+  quality->Update();
+  vtkFieldData* f = quality->GetOutput()->GetFieldData();
+  std::printf("CGAL Mesh_3 (%s): %lld tets, %lld points, dihedral %.2f / %.2f deg, Hausdorff %.2f mm "
+              "(95%% %.2f, mean %.2f), %.1f s\n",
+    deterministic ? "no time limits" : "default time limits",
+    static_cast<long long>(mesh->GetNumberOfCells()), static_cast<long long>(mesh->GetNumberOfPoints()),
+    f->GetArray("MinDihedralAngle")->GetTuple1(0), f->GetArray("MaxDihedralAngle")->GetTuple1(0),
+    f->GetArray("HausdorffDistance")->GetTuple1(0), f->GetArray("HausdorffDistance95")->GetTuple1(0),
+    f->GetArray("MeanSurfaceDistance")->GetTuple1(0), seconds);
+  std::printf("{\"tetrahedra\": %lld, \"points\": %lld, \"min_dihedral_deg\": %.6f, \"max_dihedral_deg\": %.6f, "
+              "\"hausdorff_mm\": %.6f, \"hausdorff_95_mm\": %.6f, \"mean_distance_mm\": %.6f, \"seconds\": %.3f}\n",
+    static_cast<long long>(mesh->GetNumberOfCells()), static_cast<long long>(mesh->GetNumberOfPoints()),
+    f->GetArray("MinDihedralAngle")->GetTuple1(0), f->GetArray("MaxDihedralAngle")->GetTuple1(0),
+    f->GetArray("HausdorffDistance")->GetTuple1(0), f->GetArray("HausdorffDistance95")->GetTuple1(0),
+    f->GetArray("MeanSurfaceDistance")->GetTuple1(0), seconds);
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetInputConnection(quality->GetOutputPort());
+  writer->SetFileName(argv[2]);
+  writer->SetDataModeToBinary();
+  return writer->Write() ? 0 : 1;
+}
