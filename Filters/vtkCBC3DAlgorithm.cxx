@@ -3,6 +3,7 @@
 #include "vtkCBC3DConvert.h"
 
 #include "cbc3d/LabelImage.h"
+#include "cbc3d/Status.h"
 #include "cbc3d/TetMesh.h"
 
 #include <vtkDataObject.h>
@@ -111,6 +112,17 @@ bool vtkCBC3DAlgorithm::ReadMesh(vtkInformationVector** inputVector, cbc3d::TetM
     return false;
   }
   return true;
+}
+
+int vtkCBC3DAlgorithm::EndOnFailure(const cbc3d::Status& status, vtkUnstructuredGrid* output)
+{
+  output->Initialize();
+  if (status.WasAborted())
+  {
+    return 1;
+  }
+  vtkErrorMacro(<< status.GetMessage());
+  return 0;
 }
 
 void vtkCBC3DAlgorithm::PrintSelf(ostream& os, vtkIndent indent)

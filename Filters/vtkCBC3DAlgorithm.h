@@ -20,8 +20,11 @@
 
 class vtkImageData;
 
+class vtkUnstructuredGrid;
+
 namespace cbc3d
 {
+class Status;
 struct LabelImage;
 struct TetMesh;
 }
@@ -86,6 +89,13 @@ protected:
    * reports the problem with vtkErrorMacro and returns false.
    */
   bool ReadMesh(vtkInformationVector** inputVector, cbc3d::TetMesh& mesh);
+
+  /**
+   * The end of RequestData when a core function did not succeed: a stop asked by the user
+   * leaves an empty output and is no error (returns 1); anything else is reported with
+   * vtkErrorMacro (returns 0).
+   */
+  int EndOnFailure(const cbc3d::Status& status, vtkUnstructuredGrid* output);
 
   /// ReadMesh, then ReadLabelImage: the inputs of the filters that refine or move a mesh.
   bool ReadMeshAndImage(

@@ -30,15 +30,9 @@ int vtkCBC3DBCCLattice::RequestData(
   cbc3d::TetMesh mesh;
   const cbc3d::Status status =
     cbc3d::BuildBCCLattice(image, params, mesh, vtkCBC3DConvert::MakeProgress(this));
-  if (status.WasAborted())
-  {
-    output->Initialize();
-    return 1; // an abort is the user's choice, not an error: the output is left empty
-  }
   if (!status.IsOk())
   {
-    vtkErrorMacro(<< status.GetMessage());
-    return 0;
+    return this->EndOnFailure(status, output);
   }
   vtkCBC3DConvert::ToUnstructuredGrid(mesh, output);
   vtkNew<vtkDoubleArray> edge;

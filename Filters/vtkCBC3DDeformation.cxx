@@ -86,15 +86,9 @@ int vtkCBC3DDeformation::RequestData(
   cbc3d::DeformationResult result;
   const cbc3d::Status status =
     cbc3d::DeformMesh(image, mesh, params, moved, result, vtkCBC3DConvert::MakeProgress(this));
-  if (status.WasAborted())
-  {
-    output->Initialize();
-    return 1;
-  }
   if (!status.IsOk())
   {
-    vtkErrorMacro(<< status.GetMessage());
-    return 0;
+    return this->EndOnFailure(status, output);
   }
   // Same cells and arrays as the input, moved points.
   output->ShallowCopy(input);

@@ -46,15 +46,9 @@ int vtkCBC3DRefinement::RequestData(
   cbc3d::RefinementResult result;
   const cbc3d::Status status =
     cbc3d::RefineMesh(image, lattice, params, mesh, result, vtkCBC3DConvert::MakeProgress(this));
-  if (status.WasAborted())
-  {
-    output->Initialize();
-    return 1;
-  }
   if (!status.IsOk())
   {
-    vtkErrorMacro(<< status.GetMessage());
-    return 0;
+    return this->EndOnFailure(status, output);
   }
   vtkCBC3DConvert::ToUnstructuredGrid(mesh, output);
 

@@ -10,12 +10,9 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cbc3d_testing import Checks  # noqa: E402
+from cbc3d_testing import Checks, shared_data_or_skip  # noqa: E402
 
-shared = os.environ.get("CBC3D_SHARED_DATA", "")
-if not os.path.isdir(shared):
-    print("SKIP: no shared data folder at %r (real images live in ../shared/data)" % shared)
-    sys.exit(77)
+shared = shared_data_or_skip()
 cli = os.environ["CBC3D_CLI"]
 check = Checks()
 

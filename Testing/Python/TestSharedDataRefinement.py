@@ -14,12 +14,9 @@ from paraview import servermanager
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cbc3d_testing import Checks, dihedral_angles  # noqa: E402
+from cbc3d_testing import Checks, dihedral_angles, shared_data_or_skip  # noqa: E402
 
-shared = os.environ.get("CBC3D_SHARED_DATA", "")
-if not os.path.isdir(shared):
-    print("SKIP: no shared data folder at %r (real images live in ../shared/data)" % shared)
-    sys.exit(77)
+shared = shared_data_or_skip()
 cli = os.environ["CBC3D_CLI"]
 check = Checks()
 LARGEST = np.degrees(np.arccos(-1 / np.sqrt(5)))  # 116.565: the green split of a face

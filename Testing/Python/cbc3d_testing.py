@@ -6,6 +6,18 @@ import struct
 import sys
 
 
+def shared_data_or_skip():
+    """The folder of the real images (env CBC3D_SHARED_DATA); exits 77 (ctest: skipped) with a
+    message where it is absent, as in a user's fresh clone."""
+    import os
+
+    shared = os.environ.get("CBC3D_SHARED_DATA", "")
+    if not os.path.isdir(shared):
+        print("SKIP: no shared data folder at %r (real images live in ../shared/data)" % shared)
+        sys.exit(77)
+    return shared
+
+
 class Checks:
     """Collects failed checks; `finish()` prints the count and exits 1 if any failed."""
 
