@@ -2,6 +2,7 @@
 
 #include "cbc3d/MeshFaces.h"
 #include "cbc3d/Parallel.h"
+#include "cbc3d/PointGrid.h"
 #include "cbc3d/SurfacePoints.h"
 #include "cbc3d/TetGeometry.h"
 #include "cbc3d/TetTopology.h"
@@ -82,66 +83,6 @@ Sources FindSources(const TetMesh& mesh)
   }
   return sources;
 }
-
-// Points bucketed on a uniform grid, for nearest-point queries within a radius.
-class PointGrid
-{
-public:
-  PointGrid(const std::vector<Eigen::Vector3d>& points, double cell)
-    : Points(points)
-    , Cell(cell)
-  {
-    for (std::size_t i = 0; i < points.size(); ++i)
-    {
-      this->Entries.emplace_back(this->Key(this->CellOf(points[i])), static_cast<int>(i));
-    }
-    std::sort(this->Entries.begin(), this->Entries.end());
-  }
-
-  /// The nearest point within `radius` that `accept(index)` takes; -1 if none. Ties go to the
-  /// lower index, so the answer does not depend on the order of the search.
-  template <typename Accept>
-  int Nearest(const Eigen::Vector3d& x, double radius, const Accept& accept) const
-  {
-    const Eigen::Vector3i lo = this->CellOf(x - Eigen::Vector3d::Constant(radius));
-    const Eigen::Vector3i hi = this->CellOf(x + Eigen::Vector3d::Constant(radius));
-    int best = -1;
-    double bestDistance = radius * radius;
-    for (int k = lo[2]; k <= hi[2]; ++k)
-      for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int i = lo[0]; i <= hi[0]; ++i)
-        {
-          const std::int64_t key = this->Key(Eigen::Vector3i(i, j, k));
-          auto it = std::lower_bound(this->Entries.begin(), this->Entries.end(), std::make_pair(key, -1));
-          for (; it != this->Entries.end() && it->first == key; ++it)
-          {
-            const double distance = (this->Points[it->second] - x).squaredNorm();
-            if ((distance < bestDistance || (distance == bestDistance && (best < 0 || it->second < best))) &&
-              accept(it->second))
-            {
-              best = it->second;
-              bestDistance = distance;
-            }
-          }
-        }
-    return best;
-  }
-
-private:
-  Eigen::Vector3i CellOf(const Eigen::Vector3d& x) const
-  {
-    return (x / this->Cell).array().floor().cast<int>();
-  }
-  static std::int64_t Key(const Eigen::Vector3i& c)
-  {
-    return (std::int64_t(c[0]) + (1 << 20)) + ((std::int64_t(c[1]) + (1 << 20)) << 21) +
-      ((std::int64_t(c[2]) + (1 << 20)) << 42);
-  }
-
-  const std::vector<Eigen::Vector3d>& Points;
-  double Cell;
-  std::vector<std::pair<std::int64_t, int>> Entries;
-};
 
 // The label-sets a source may match: its own; failing that (no target has it), the sets of
 // two or more of its labels that targets have, such as the two-tissue interfaces meeting at a
@@ -240,7 +181,7 @@ public:
       for (std::int64_t i = 0; i < vertexCount; ++i)
       {
         const PointId v = tissue.Vertices[i];
-        if (share[v] > 0.0 && tissue.Grid->Nearest(trial[v], limit, [](int) { return true; }) < 0)
+        if (share[v] > 0.0 && tissue.Grid->Nearest(trial[v], limit) < 0)
         {
           hold[v] = 1; // each vertex appears once in a tissue's list
         }
@@ -257,9 +198,9 @@ public:
       for (std::int64_t i = 0; i < voxelCount; ++i)
       {
         const Eigen::Vector3d& voxel = tissue.Voxels[i];
-        if (afterGrid.Nearest(voxel, limit, [](int) { return true; }) < 0)
+        if (afterGrid.Nearest(voxel, limit) < 0)
         {
-          const int covering = beforeGrid.Nearest(voxel, limit, [](int) { return true; });
+          const int covering = beforeGrid.Nearest(voxel, limit);
           if (covering >= 0 && share[tissue.Vertices[covering]] > 0.0)
           {
 #pragma omp atomic write
@@ -314,11 +255,7 @@ private:
 #pragma omp parallel for schedule(dynamic, 256) reduction(max : worst) num_threads(ThreadCount(this->Threads))
       for (std::int64_t i = 0; i < count; ++i)
       {
-        int nearest = -1;
-        for (double radius = this->Cell; nearest < 0 && radius < 1e9; radius *= 2.0)
-        {
-          nearest = to.Nearest(from[i], radius, [](int) { return true; });
-        }
+        const int nearest = to.NearestAny(from[i]);
         worst = std::max(worst, nearest < 0 ? 0.0 : (toPoints[nearest] - from[i]).norm());
       }
       return worst;
