@@ -8,8 +8,6 @@
 #include "cbc3d/TetTopology.h"
 
 #include <Eigen/IterativeLinearSolvers>
-#include <cstdio>
-#include <cstdlib>
 
 #include <algorithm>
 #include <atomic>
@@ -470,13 +468,6 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
         return Status::Aborted();
       }
     }
-    if (std::getenv("CBC3D_DEBUG"))
-    {
-      Eigen::Index worst = 0;
-      du.cwiseAbs().maxCoeff(&worst);
-      std::fprintf(stderr, "cg %d iterations, error %g, largest du %g at point %ld (diag %g, spring %g)\n",
-        int(cg.iterations()), cg.error(), du[worst], long(worst / 3), stiffness.coeff(worst, worst), springs[worst]);
-    }
 
     // Try the step; shorten it at the vertices of tets it would spoil (by half each round,
     // then not at all), until none is spoilt.
@@ -504,9 +495,18 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
         bad.push_back(-1); // held for fidelity: try again with those vertices in place
         continue;
       }
+      // Once per round for each vertex, however many spoilt tets it has.
+      std::vector<char> spoilt(x.size(), 0);
       for (const std::int64_t t : bad)
       {
         for (const PointId p : mesh.Tets[t])
+        {
+          spoilt[p] = 1;
+        }
+      }
+      for (std::size_t p = 0; p < x.size(); ++p)
+      {
+        if (spoilt[p])
         {
           share[p] = share[p] > 1.0 / 16.0 ? 0.5 * share[p] : 0.0;
         }
@@ -528,8 +528,6 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     ++result.Iterations;
     result.MeanStep.push_back(moved / double(sourceCount));
     result.HeldVertices.push_back(heldCount);
-    if (std::getenv("CBC3D_DEBUG"))
-      std::fprintf(stderr, "iteration %d: mean match %.3f mm, held %zu of %zu\n", iteration, moved / double(sourceCount), heldCount, x.size());
     if (progress && !progress(0.1 + 0.9 * double(iteration + 1) / params.Iterations))
     {
       return Status::Aborted();

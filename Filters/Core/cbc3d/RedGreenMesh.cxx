@@ -22,6 +22,28 @@ std::uint64_t EdgeKey(PointId a, PointId b)
 
 // The corners and edge midpoints of a tet, in local point order (see RedGreenTables.h).
 using LocalPoints = std::array<PointId, 10>;
+
+// When exactly two edges of one face are split, the face's third edge (which completes a green
+// closure, cheaper than a red split); -1 otherwise.
+int ThirdEdgeOfFace(std::uint8_t mask)
+{
+  constexpr std::array<std::uint8_t, 4> faceEdges = { 0b000111, 0b011001, 0b110010, 0b101100 };
+  for (const std::uint8_t face : faceEdges)
+  {
+    const std::uint8_t missing = face & ~mask;
+    if ((mask & ~face) == 0 && missing != 0 && (missing & (missing - 1)) == 0)
+    {
+      for (int e = 0; e < 6; ++e)
+      {
+        if (missing == (1u << e))
+        {
+          return e;
+        }
+      }
+    }
+  }
+  return -1;
+}
 } // namespace
 
 RedGreenMesh::RedGreenMesh(const TetMesh& roots)
@@ -136,8 +158,16 @@ std::size_t RedGreenMesh::Close()
     const std::size_t count = this->RedList.size();
     for (std::size_t red = 0; red < count; ++red)
     {
-      if (this->RedList[red].Leaf && !this->HasClosure(this->RedList[red].Points))
+      const Tet tet = this->RedList[red].Points;
+      if (this->RedList[red].Leaf && !this->HasClosure(tet))
       {
+        const int third = ThirdEdgeOfFace(this->SplitMask(tet));
+        if (third >= 0)
+        {
+          this->Midpoint(tet[TetEdges[third][0]], tet[TetEdges[third][1]]);
+          changed = true;
+          continue;
+        }
         this->SplitRed(red);
         ++splits;
         changed = true;

@@ -36,8 +36,14 @@ public:
   /// Splits a red leaf 1:8 along its shortest inner diagonal.
   void SplitRed(std::size_t red);
 
-  /// Red-splits leaves until every leaf has a green closure none of whose edges is split;
-  /// returns the number of red splits this took.
+  /// Splits edge (a, b) of a red leaf at its midpoint: the leaves around it take a green
+  /// closure, or a red split where none fits, at the next Close(). Returns the midpoint.
+  PointId SplitEdge(PointId a, PointId b) { return this->Midpoint(a, b); }
+
+  /// Closes the mesh: a leaf with two split edges on one face gets the face's third edge split
+  /// too (a green closure, as in CBC3D; far cheaper than a red split, which would split the
+  /// neighbours' edges in turn), and any other leaf without a green closure none of whose edges
+  /// is split is red-split, until every leaf has one. Returns the number of red splits.
   std::size_t Close();
 
   /// The conforming mesh: every leaf, green-split where its edges are split. `source[i]` is

@@ -1,5 +1,6 @@
 #include "cbc3d/Refinement.h"
 
+#include "cbc3d/BoundaryCoverage.h"
 #include "cbc3d/Parallel.h"
 #include "cbc3d/RedGreenMesh.h"
 #include "cbc3d/TetVoxelSampler.h"
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <sstream>
 
 namespace cbc3d
@@ -62,7 +64,7 @@ bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threa
       SampleTetLabels(image, { points[tet[0]], points[tet[1]], points[tet[2]], points[tet[3]] },
         mesh.Counts[t], static_cast<std::int32_t>(t), mesh.VoxelOwner.data());
     std::int32_t label = NoLabel;
-    mesh.Counts[t].Majority(label);
+    mesh.Counts[t].Majority(image, label);
     mesh.Labels[t] = label;
   }
   // Thread 0 may have had no turn to poll (a small mesh, a busy machine): ask once more.
@@ -143,6 +145,11 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   {
     return Status::Error("the minimum edge length must be 0 (automatic) or a positive length in mm");
   }
+  if (!std::isfinite(params.BoundaryDistance))
+  {
+    return Status::Error("the boundary distance must be 0 (automatic), negative (none) or a "
+                         "length in mm");
+  }
   if (lattice.Tets.empty())
   {
     return Status::Error("the mesh to refine has no tets");
@@ -154,6 +161,19 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
 
   const TissueComponents components = FindTissueComponents(image);
   RedGreenMesh hierarchy(lattice);
+  std::unique_ptr<BoundaryCoverage> coverage;
+  if (params.BoundaryDistance >= 0.0)
+  {
+    double longest = 0.0;
+    for (std::size_t red = 0; red < lattice.Tets.size(); ++red)
+    {
+      longest = std::max(longest, hierarchy.LongestEdge(red));
+    }
+    result.BoundaryDistance = params.BoundaryDistance > 0.0 ? params.BoundaryDistance : 0.375 * longest;
+    // Deformation moves a vertex by about an element size: the lattice's shortest edge.
+    coverage = std::make_unique<BoundaryCoverage>(image, components, params.MinimumComponentVoxels,
+      hierarchy.ShortestEdge(0), params.NumberOfThreads);
+  }
   LabelledMesh mesh;
   std::map<std::int32_t, TissueFidelity> fidelity;
   std::vector<char> componentInMesh;
@@ -209,8 +229,48 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
         marked[mesh.Source[mesh.VoxelOwner[v]]] = 1;
       }
     }
+    // Where the surface would stay far from the image boundary: a new surface vertex on the
+    // longest edge of the face nearest to a far boundary voxel (a green split of the tets around
+    // the edge), or a red split of the leaf where that edge is not one of the leaf's own; and a
+    // red split of the tets with a vertex that cannot reach the boundary.
+    std::vector<std::pair<PointId, PointId>> bisect;
+    bool coverageWanted = false;
+    if (coverage)
+    {
+      const auto& x = hierarchy.Points();
+      const BoundaryCoverage::Gaps gaps =
+        coverage->Find(x, mesh.Tets, mesh.Labels, result.BoundaryDistance);
+      result.LargestBoundaryGap = gaps.LargestGap;
+      coverageWanted = !gaps.FarFaces.empty() || !gaps.StrandedTets.empty();
+      for (const std::int64_t t : gaps.StrandedTets)
+      {
+        marked[mesh.Source[t]] = 1;
+      }
+      for (const BoundaryCoverage::Face& face : gaps.FarFaces)
+      {
+        int longest = 0;
+        auto length = [&](int e) { return (x[face.Points[e]] - x[face.Points[(e + 1) % 3]]).norm(); };
+        for (int e = 1; e < 3; ++e)
+        {
+          longest = length(e) > length(longest) ? e : longest;
+        }
+        const PointId a = face.Points[longest], b = face.Points[(longest + 1) % 3];
+        const std::int64_t red = mesh.Source[face.Tet];
+        const Tet& corners = hierarchy.Reds()[red].Points;
+        const bool leafEdge = std::count(corners.begin(), corners.end(), a) > 0 &&
+          std::count(corners.begin(), corners.end(), b) > 0;
+        if (!leafEdge)
+        {
+          marked[red] = 1;
+        }
+        else if (length(longest) / 2.0 >= minimumEdge * (1.0 - 1e-9))
+        {
+          bisect.emplace_back(a, b);
+        }
+      }
+    }
     std::size_t splits = 0;
-    bool anyWanted = false;
+    bool anyWanted = coverageWanted;
     for (std::size_t red = 0; red < marked.size(); ++red)
     {
       if (!marked[red])
@@ -221,15 +281,15 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
       marked[red] = hierarchy.ShortestEdge(red) / 2.0 >= minimumEdge * (1.0 - 1e-9);
       splits += marked[red];
     }
-    if (splits == 0)
+    if (splits == 0 && bisect.empty())
     {
-      result.StopReason = anyWanted
-        ? "the tets left to refine are at the minimum edge length"
-        : "every tissue reached the fidelity target";
+      result.StopReason = anyWanted ? "the tets left to refine are at the minimum edge length"
+        : coverage ? "every tissue reached the fidelity target and the boundary distance"
+                   : "every tissue reached the fidelity target";
       break;
     }
     // Each red split makes 8 tets of one; closure adds some more.
-    const double expectedTets = double(mesh.Tets.size()) + 10.0 * double(splits);
+    const double expectedTets = double(mesh.Tets.size()) + 10.0 * double(splits) + 6.0 * double(bisect.size());
     if (expectedTets * BytesPerTet > double(memoryLimit))
     {
       std::ostringstream reason;
@@ -244,6 +304,10 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
       {
         hierarchy.SplitRed(red);
       }
+    }
+    for (const auto& [a, b] : bisect)
+    {
+      hierarchy.SplitEdge(a, b);
     }
     ++result.Passes;
   }

@@ -23,6 +23,13 @@ struct RefinementParams
   /// Every 6-connected component of a tissue with at least this many voxels keeps tets of
   /// that tissue (thin vessels are refined towards, or kept by relabelling, never eroded).
   int MinimumComponentVoxels = 8;
+  /// Every boundary voxel of a tissue (of a component that is kept) should end within this
+  /// distance (mm) of a vertex of the tissue's surface, the measure of the paper's Hausdorff
+  /// distance: where the surface after deformation (predicted) would leave voxels farther, the
+  /// longest edge of the nearest surface face is split; and a tet with a surface vertex too far
+  /// from every boundary voxel of its tissue to reach it is split red. 0 = automatic: 3/8 of the
+  /// longest edge of the mesh to refine (3 mm for an 8 mm BCC lattice); negative = no such bound.
+  double BoundaryDistance = 0.0;
   /// OpenMP threads; 0 = all cores.
   int NumberOfThreads = 0;
   /// Stop refining before the mesh would need more memory than this (bytes); 0 = half the machine.
@@ -44,6 +51,8 @@ struct TissueFidelity
 struct RefinementResult
 {
   std::vector<TissueFidelity> Tissues; // ascending label
+  double BoundaryDistance = 0.0;       // the bound used (mm); 0 when none
+  double LargestBoundaryGap = 0.0;     // farthest boundary voxel from the predicted surface (mm)
   int Passes = 0;                      // refinement passes that split tets
   int DeepestLevel = 0;                // red level of the finest tets
   std::vector<std::uint8_t> Levels;    // red level of every output tet
@@ -52,9 +61,11 @@ struct RefinementResult
 
 /// Red-green refinement of a tet mesh (normally the BCC lattice) driven by voxel fidelity
 /// (paper, section 3.2). Each pass labels every tet with the majority label of its voxels
-/// (sampled finer where a tet holds no voxel centre), measures F1 and F2 per tissue, and
-/// red-splits the tets that cross the boundary of a tissue below the target, until every
-/// tissue reaches it, or no tet may be split (MinimumEdgeLength), or memory would run out. A
+/// (sampled finer where a tet holds no voxel centre; ties go to a tissue over background, then
+/// to the smaller label), measures F1 and F2 per tissue, red-splits the tets that cross the
+/// boundary of a tissue below the target, and splits where the surface would stay far from the
+/// image boundary (BoundaryDistance), until every tissue reaches both, or no tet may be split
+/// (MinimumEdgeLength), or memory would run out. A
 /// tissue component the labelling misses is refined towards, then given the tet that holds
 /// most of it. Tets labelled background are dropped. The result is conforming (no hanging
 /// vertex), every tet positively oriented, and the same for any thread count.

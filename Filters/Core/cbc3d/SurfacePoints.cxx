@@ -46,7 +46,7 @@ std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(const TetMesh
   return result;
 }
 
-std::map<std::int32_t, std::vector<Eigen::Vector3d>> TissueBoundaryVoxelCentres(
+std::map<std::int32_t, std::vector<std::int64_t>> TissueBoundaryVoxels(
   const LabelImage& image, int numberOfThreads)
 {
   const auto& d = image.Dimensions;
@@ -75,15 +75,32 @@ std::map<std::int32_t, std::vector<Eigen::Vector3d>> TissueBoundaryVoxelCentres(
       }
     }
   }
-  std::map<std::int32_t, std::vector<Eigen::Vector3d>> result;
+  std::map<std::int32_t, std::vector<std::int64_t>> result;
   for (const auto& slice : perSlice)
   {
     for (const auto& [label, voxel] : slice)
     {
+      result[label].push_back(voxel);
+    }
+  }
+  return result;
+}
+
+std::map<std::int32_t, std::vector<Eigen::Vector3d>> TissueBoundaryVoxelCentres(
+  const LabelImage& image, int numberOfThreads)
+{
+  const auto& d = image.Dimensions;
+  std::map<std::int32_t, std::vector<Eigen::Vector3d>> result;
+  for (const auto& [label, voxels] : TissueBoundaryVoxels(image, numberOfThreads))
+  {
+    auto& centres = result[label];
+    centres.reserve(voxels.size());
+    for (const std::int64_t voxel : voxels)
+    {
       const std::int64_t i = voxel % d[0];
       const std::int64_t j = (voxel / d[0]) % d[1];
       const std::int64_t k = voxel / (std::int64_t(d[0]) * d[1]);
-      result[label].push_back(image.IndexToWorld(Eigen::Vector3d(double(i), double(j), double(k))));
+      centres.push_back(image.IndexToWorld(Eigen::Vector3d(double(i), double(j), double(k))));
     }
   }
   return result;

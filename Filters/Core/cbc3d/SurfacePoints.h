@@ -19,9 +19,13 @@ namespace cbc3d
 /// mesh must conform). Ids are ascending.
 std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(const TetMesh& mesh);
 
-/// Per tissue label, the world-space centres of the tissue's boundary voxels: voxels of the
-/// tissue with a face-neighbour (6-neighbour) outside it, the image border counting as
-/// outside. In voxel order (x fastest), the same for any thread count.
+/// Per tissue label, the indices of the tissue's boundary voxels: voxels of the tissue with a
+/// face-neighbour (6-neighbour) outside it, the image border counting as outside. Ascending,
+/// the same for any thread count.
+std::map<std::int32_t, std::vector<std::int64_t>> TissueBoundaryVoxels(
+  const LabelImage& image, int numberOfThreads = 0);
+
+/// The world-space centres of TissueBoundaryVoxels, in the same order.
 std::map<std::int32_t, std::vector<Eigen::Vector3d>> TissueBoundaryVoxelCentres(
   const LabelImage& image, int numberOfThreads = 0);
 } // namespace cbc3d

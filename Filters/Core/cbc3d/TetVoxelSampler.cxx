@@ -32,12 +32,15 @@ std::int64_t LabelCounts::Of(std::int32_t label) const
   return 0;
 }
 
-bool LabelCounts::Majority(std::int32_t& label) const
+bool LabelCounts::Majority(const LabelImage& image, std::int32_t& label) const
 {
   std::int64_t best = 0;
   for (const auto& entry : this->Counts)
   {
-    if (entry.second > best || (entry.second == best && entry.first < label))
+    const bool betterTie = best > 0 && entry.second == best &&
+      (image.IsTissue(entry.first) != image.IsTissue(label) ? image.IsTissue(entry.first)
+                                                            : entry.first < label);
+    if (entry.second > best || betterTie)
     {
       best = entry.second;
       label = entry.first;

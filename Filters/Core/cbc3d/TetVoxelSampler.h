@@ -30,9 +30,10 @@ struct LabelCounts
   std::int64_t TissueTotal(const LabelImage& image) const;
   /// The most frequent tissue label (ties go to the smaller label); false when there is none.
   bool MajorityTissue(const LabelImage& image, std::int32_t& label) const;
-  /// The most frequent label of all, background included (ties go to the smaller label);
-  /// false when the tet holds no sample.
-  bool Majority(std::int32_t& label) const;
+  /// The most frequent label of all, background included; ties go to a tissue over
+  /// background (a tet half in a narrow gap keeps the tissue around it), then to the smaller
+  /// label. False when the tet holds no sample.
+  bool Majority(const LabelImage& image, std::int32_t& label) const;
 };
 
 /// Counts the labels of the voxel centres inside a tet given by its world-space corners.

@@ -197,3 +197,48 @@ TEST(RedGreenMesh, RefinedBCCTetsKeepTheirAnglesAndTheMeshConforms)
         EXPECT_FALSE(onEdge) << "point " << q << " hangs on an edge";
       }
 }
+
+TEST(RedGreenMesh, TwoSplitEdgesOfAFaceForceTheThirdNotARedSplit)
+{
+  // One tet; split edges 01 and 02 (two edges of face 012): the closure splits edge 12 too and
+  // the tet becomes the 4-tet green closure of a split face, with no red split.
+  cbc3d::TetMesh root;
+  root.Points = { { 0, 0, 0 }, { 2, 0, 0 }, { 0, 2, 0 }, { 0, 0, 2 } };
+  root.Tets = { { 0, 1, 2, 3 } };
+  root.Labels = { 1 };
+  cbc3d::RedGreenMesh mesh(root);
+  mesh.SplitEdge(0, 1);
+  mesh.SplitEdge(0, 2);
+  mesh.Close();
+  EXPECT_EQ(mesh.Reds().size(), 1u); // no red split
+  std::vector<cbc3d::Tet> tets;
+  std::vector<std::int64_t> source;
+  mesh.BuildConforming(tets, source);
+  ASSERT_EQ(tets.size(), 4u);
+  ASSERT_EQ(mesh.Points().size(), 7u); // the corners and the three midpoints of face 012
+  EXPECT_TRUE(mesh.Points()[6].isApprox(Eigen::Vector3d(1, 1, 0)));
+  double volume = 0.0;
+  for (const auto& tet : tets)
+  {
+    const auto& p = mesh.Points();
+    const double v = cbc3d::SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]);
+    EXPECT_GT(v, 0.0);
+    volume += v;
+  }
+  EXPECT_NEAR(volume, 8.0 / 6.0, 1e-12);
+
+  // Two opposite split edges (01 and 23) have a green closure of their own and stay as they
+  // are; three edges at one corner (01, 02, 03) are on no single face and need a red split.
+  cbc3d::RedGreenMesh opposite(root);
+  opposite.SplitEdge(0, 1);
+  opposite.SplitEdge(2, 3);
+  opposite.Close();
+  EXPECT_EQ(opposite.Reds().size(), 1u);
+  EXPECT_EQ(opposite.Points().size(), 6u);
+  cbc3d::RedGreenMesh corner(root);
+  corner.SplitEdge(0, 1);
+  corner.SplitEdge(0, 2);
+  corner.SplitEdge(0, 3);
+  corner.Close();
+  EXPECT_EQ(corner.Reds().size(), 9u); // the root and its 8 red children
+}

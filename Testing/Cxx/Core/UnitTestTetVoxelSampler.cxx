@@ -64,6 +64,24 @@ TEST(TetVoxelSampler, MajorityTieGoesToTheSmallerTissueLabel)
   EXPECT_EQ(label, 4);
   EXPECT_EQ(counts.TissueTotal(image), 2 * cbc3d::VoxelWeight);
   std::int32_t any = -1;
-  ASSERT_TRUE(counts.Majority(any)); // background 0 has the most weight
+  ASSERT_TRUE(counts.Majority(image, any)); // background 0 has the most weight
   EXPECT_EQ(any, 0);
+}
+
+TEST(TetVoxelSampler, MajorityTieGoesToTissueOverBackground)
+{
+  const cbc3d::LabelImage image = Cube(3, 0);
+  cbc3d::LabelCounts counts;
+  counts.Add(0);
+  counts.Add(7);
+  counts.Add(5);
+  counts.Add(0);
+  counts.Add(7);
+  counts.Add(5);
+  std::int32_t label = -1;
+  ASSERT_TRUE(counts.Majority(image, label)); // 0, 5 and 7 tie: tissue first, then the smaller
+  EXPECT_EQ(label, 5);
+  counts.Add(0);
+  ASSERT_TRUE(counts.Majority(image, label)); // a strict majority of background still wins
+  EXPECT_EQ(label, 0);
 }

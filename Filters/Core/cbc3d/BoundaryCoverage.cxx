@@ -1,0 +1,135 @@
+#include "cbc3d/BoundaryCoverage.h"
+
+#include "cbc3d/MeshFaces.h"
+#include "cbc3d/Parallel.h"
+#include "cbc3d/SurfacePoints.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace cbc3d
+{
+BoundaryCoverage::BoundaryCoverage(const LabelImage& image, const TissueComponents& components,
+  int minimumVoxels, double reach, int numberOfThreads)
+  : Reach(reach)
+  , Threads(numberOfThreads)
+{
+  const auto& d = image.Dimensions;
+  for (const auto& [label, voxels] : TissueBoundaryVoxels(image, numberOfThreads))
+  {
+    Tissue& tissue = this->Tissues[label];
+    for (const std::int64_t v : voxels)
+    {
+      const std::int32_t component = components.ComponentOfVoxel[v];
+      if (component >= 0 && components.Size[component] >= minimumVoxels)
+      {
+        tissue.Centres.push_back(image.IndexToWorld(Eigen::Vector3d(double(v % d[0]),
+          double((v / d[0]) % d[1]), double(v / (std::int64_t(d[0]) * d[1])))));
+      }
+    }
+    // Boundary voxels are dense: a grid of a few voxels per cell keeps each query short.
+    tissue.Grid = std::make_unique<PointGrid>(tissue.Centres, 2.0 * image.Spacing.maxCoeff());
+  }
+}
+
+BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>& points,
+  const std::vector<Tet>& tets, const std::vector<std::int32_t>& labels, double distance) const
+{
+  // Per tissue, the faces between one of its tets and a tet of another label, or nothing.
+  TetMesh topology;
+  topology.Tets = tets;
+  topology.Labels = labels;
+  topology.Points.resize(points.size());
+  std::map<std::int32_t, std::vector<Face>> surfaces;
+  for (const MeshFace& face : FindMeshFaces(topology))
+  {
+    for (int side = 0; side < std::min(face.TetCount, 2); ++side)
+    {
+      const std::int32_t label = labels[face.Tets[side]];
+      const bool inside = face.TetCount == 2 && labels[face.Tets[1 - side]] == label;
+      if (!inside && this->Tissues.count(label))
+      {
+        surfaces[label].push_back({ face.Points, face.Tets[side] });
+      }
+    }
+  }
+
+  Gaps gaps;
+  for (const auto& [label, tissue] : this->Tissues)
+  {
+    const std::vector<Face>& faces = surfaces[label];
+    if (faces.empty() || tissue.Centres.empty())
+    {
+      gaps.LargestGap = faces.empty() && !tissue.Centres.empty() ? std::numeric_limits<double>::infinity()
+                                                                 : gaps.LargestGap;
+      continue;
+    }
+    // The surface's vertices, numbered 0..n-1, and where deformation would take each.
+    std::vector<PointId> vertices;
+    for (const Face& face : faces)
+    {
+      vertices.insert(vertices.end(), face.Points.begin(), face.Points.end());
+    }
+    std::sort(vertices.begin(), vertices.end());
+    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+    auto indexOf = [&vertices](PointId p) {
+      return static_cast<int>(std::lower_bound(vertices.begin(), vertices.end(), p) - vertices.begin());
+    };
+    const std::int64_t vertexCount = static_cast<std::int64_t>(vertices.size());
+    std::vector<Eigen::Vector3d> predicted(vertexCount);
+    std::vector<char> stranded(vertexCount, 0);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
+    for (std::int64_t i = 0; i < vertexCount; ++i)
+    {
+      const Eigen::Vector3d& x = points[vertices[i]];
+      const int nearest = tissue.Grid->Nearest(x, this->Reach);
+      predicted[i] = nearest < 0 ? x : tissue.Centres[nearest];
+      stranded[i] = nearest < 0;
+    }
+    std::vector<Eigen::Vector3d> centroids;
+    for (const Face& face : faces)
+    {
+      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+      for (const PointId p : face.Points)
+      {
+        centroid += predicted[indexOf(p)] / 3.0;
+        if (stranded[indexOf(p)])
+        {
+          gaps.StrandedTets.push_back(face.Tet);
+        }
+      }
+      centroids.push_back(centroid);
+    }
+
+    const double cell = std::max(distance, 1e-6);
+    const PointGrid vertexGrid(predicted, cell), faceGrid(centroids, cell);
+    const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Centres.size());
+    std::vector<int> nearestFace(voxelCount, -1);
+    double largest = 0.0; // a max reduction is exact: the same for any thread count
+#pragma omp parallel for schedule(dynamic, 1024) reduction(max : largest) num_threads(ThreadCount(this->Threads))
+    for (std::int64_t i = 0; i < voxelCount; ++i)
+    {
+      const Eigen::Vector3d& centre = tissue.Centres[i];
+      const double gap = (predicted[vertexGrid.NearestAny(centre)] - centre).norm();
+      largest = std::max(largest, gap);
+      if (gap > distance)
+      {
+        nearestFace[i] = faceGrid.NearestAny(centre);
+      }
+    }
+    gaps.LargestGap = std::max(gaps.LargestGap, largest);
+    std::vector<char> taken(faces.size(), 0);
+    for (const int f : nearestFace) // in voxel order: the same for any thread count
+    {
+      if (f >= 0 && !taken[f])
+      {
+        taken[f] = 1;
+        gaps.FarFaces.push_back(faces[f]);
+      }
+    }
+  }
+  std::sort(gaps.StrandedTets.begin(), gaps.StrandedTets.end());
+  gaps.StrandedTets.erase(std::unique(gaps.StrandedTets.begin(), gaps.StrandedTets.end()), gaps.StrandedTets.end());
+  return gaps;
+}
+} // namespace cbc3d
