@@ -22,6 +22,13 @@ std::uint64_t EdgeKey(PointId a, PointId b)
 
 // The corners and edge midpoints of a tet, in local point order (see RedGreenTables.h).
 using LocalPoints = std::array<PointId, 10>;
+
+// Closing and building the mesh walk every red, a second or more on large meshes: they ask
+// for a stop every so many reds.
+bool StopAt(std::size_t red, const std::function<bool()>& keepGoing)
+{
+  return red % 2048 == 0 && keepGoing && !keepGoing();
+}
 } // namespace
 
 RedGreenMesh::RedGreenMesh(const TetMesh& roots)
@@ -126,9 +133,8 @@ void RedGreenMesh::SplitRed(std::size_t red)
   }
 }
 
-std::size_t RedGreenMesh::Close()
+bool RedGreenMesh::Close(const std::function<bool()>& keepGoing)
 {
-  std::size_t splits = 0;
   bool changed = true;
   while (changed)
   {
@@ -136,23 +142,31 @@ std::size_t RedGreenMesh::Close()
     const std::size_t count = this->RedList.size();
     for (std::size_t red = 0; red < count; ++red)
     {
+      if (StopAt(red, keepGoing))
+      {
+        return false;
+      }
       if (this->RedList[red].Leaf && !this->HasClosure(this->RedList[red].Points))
       {
         this->SplitRed(red);
-        ++splits;
         changed = true;
       }
     }
   }
-  return splits;
+  return true;
 }
 
-void RedGreenMesh::BuildConforming(std::vector<Tet>& tets, std::vector<std::int64_t>& source) const
+bool RedGreenMesh::BuildConforming(std::vector<Tet>& tets, std::vector<std::int64_t>& source,
+  const std::function<bool()>& keepGoing) const
 {
   tets.clear();
   source.clear();
   for (std::size_t red = 0; red < this->RedList.size(); ++red)
   {
+    if (StopAt(red, keepGoing))
+    {
+      return false;
+    }
     if (!this->RedList[red].Leaf)
     {
       continue;
@@ -173,6 +187,7 @@ void RedGreenMesh::BuildConforming(std::vector<Tet>& tets, std::vector<std::int6
       source.push_back(static_cast<std::int64_t>(red));
     }
   }
+  return true;
 }
 
 double RedGreenMesh::LongestEdge(std::size_t red) const

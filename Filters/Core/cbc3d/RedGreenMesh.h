@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <functional>
 #include <unordered_map>
 #include <vector>
 
@@ -37,12 +38,15 @@ public:
   void SplitRed(std::size_t red);
 
   /// Red-splits leaves until every leaf has a green closure none of whose edges is split;
-  /// returns the number of red splits this took.
-  std::size_t Close();
+  /// asks `keepGoing` every few thousand reds and returns false, the closure unfinished, when
+  /// it says stop.
+  bool Close(const std::function<bool()>& keepGoing = nullptr);
 
   /// The conforming mesh: every leaf, green-split where its edges are split. `source[i]` is
-  /// the red leaf that final tet i comes from. Call after Close().
-  void BuildConforming(std::vector<Tet>& tets, std::vector<std::int64_t>& source) const;
+  /// the red leaf that final tet i comes from. Call after Close(). Asks `keepGoing` every few
+  /// thousand reds; returns false, the mesh unfinished, when it says stop.
+  bool BuildConforming(std::vector<Tet>& tets, std::vector<std::int64_t>& source,
+    const std::function<bool()>& keepGoing = nullptr) const;
 
   /// The longest and the shortest edge of a red tet.
   double LongestEdge(std::size_t red) const;
