@@ -2,9 +2,10 @@
 // image, with 1 thread and with all cores, beside the lattice that made the mesh. Asserts
 // nothing: machines are shared and noisy, so read the figures and their ratios.
 //   CBC3DBenchmarkMeshQuality [IMAGE.nii.gz] [LATTICE_MM]
+#include "BenchmarkImage.h"
+
 #include "vtkCBC3DBCCLattice.h"
 #include "vtkCBC3DMeshQuality.h"
-#include "vtkCBC3DNIfTIReader.h"
 
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
@@ -17,30 +18,17 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
-#include <sys/stat.h>
-
-namespace
-{
-double Seconds(const std::chrono::steady_clock::time_point& start)
-{
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-} // namespace
 
 int main(int argc, char* argv[])
 {
   const std::string defaultImage = std::string(CBC3D_SHARED_DATA) + "/cbc3d-brain.nii.gz";
   const std::string path = argc > 1 ? argv[1] : defaultImage;
   const double edge = argc > 2 ? std::atof(argv[2]) : 2.67; // about 1 M tets on the brain
-  struct stat info;
-  if (stat(path.c_str(), &info) != 0)
+  const auto reader = ReadBenchmarkImage(path);
+  if (!reader)
   {
-    std::printf("skipped: %s not found (the real images live in ../shared/data)\n", path.c_str());
     return 0;
   }
-  vtkNew<vtkCBC3DNIfTIReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
 
   vtkNew<vtkCBC3DBCCLattice> lattice;
   lattice->SetInputConnection(reader->GetOutputPort());

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <cmath>
 #include <sstream>
@@ -142,7 +143,10 @@ std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::
 class FidelityGuard
 {
 public:
-  FidelityGuard(const LabelImage& image, const TetMesh& mesh, double cell, int threads)
+  /// Measures every tissue's distance, asking `keepGoing` before each; when it says stop, the
+  /// guard is left unfinished.
+  FidelityGuard(const LabelImage& image, const TetMesh& mesh, double cell, int threads,
+    const std::function<bool()>& keepGoing)
     : Cell(cell)
     , Threads(threads)
   {
@@ -158,6 +162,10 @@ public:
     }
     for (Tissue& tissue : this->Tissues)
     {
+      if (!keepGoing())
+      {
+        return;
+      }
       tissue.Grid = std::make_unique<PointGrid>(tissue.Voxels, cell);
       tissue.Hausdorff = this->Measure(tissue, mesh.Points);
     }
@@ -166,13 +174,18 @@ public:
   /// Holds back (share 0) the vertices whose step would push a tissue's Hausdorff distance past
   /// its current value: vertices that would end farther from the tissue's boundary voxels, and
   /// the former nearest vertices of boundary voxels that would be left farther from the mesh.
-  /// Returns how many vertices it held.
+  /// Returns how many vertices it held. Asks `keepGoing` before each tissue; when it says
+  /// stop, returns at once (the count then means nothing).
   std::size_t Hold(const std::vector<Eigen::Vector3d>& current, const std::vector<Eigen::Vector3d>& trial,
-    std::vector<double>& share) const
+    std::vector<double>& share, const std::function<bool()>& keepGoing) const
   {
     std::vector<char> hold(current.size(), 0);
     for (const Tissue& tissue : this->Tissues)
     {
+      if (!keepGoing())
+      {
+        return 0;
+      }
       const double limit = tissue.Hausdorff * (1.0 + 1e-12);
       const std::int64_t vertexCount = static_cast<std::int64_t>(tissue.Vertices.size());
 #pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
@@ -219,11 +232,16 @@ public:
     return held;
   }
 
-  /// Records the accepted positions' distances as the new limits.
-  void Accept(const std::vector<Eigen::Vector3d>& points)
+  /// Records the accepted positions' distances as the new limits. Asks `keepGoing` before
+  /// each tissue; when it says stop, returns at once.
+  void Accept(const std::vector<Eigen::Vector3d>& points, const std::function<bool()>& keepGoing)
   {
     for (Tissue& tissue : this->Tissues)
     {
+      if (!keepGoing())
+      {
+        return;
+      }
       tissue.Hausdorff = std::min(tissue.Hausdorff, this->Measure(tissue, points));
     }
   }
@@ -306,8 +324,21 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   }();
   const double bound = std::min(minimumRadians, startingMinimum);
 
-  // Setting up takes seconds on large meshes: look for a stop request between the steps.
-  auto stopped = [&progress](double fraction) { return progress && !progress(fraction); };
+  // Setting up and every iteration take seconds on large meshes: look for a stop request
+  // between the steps, and inside the longest ones through `keepGoing` (reporting the
+  // fraction last reached). A stop, once seen, is kept: a step cut short is never used.
+  bool stop = false;
+  double reached = 0.0;
+  auto stopped = [&](double fraction) {
+    reached = fraction;
+    stop = stop || !KeepGoing(progress, fraction);
+    return stop;
+  };
+  const std::function<bool()> keepGoing = [&] { return !stopped(reached); };
+  if (stopped(0.01))
+  {
+    return Status::Aborted();
+  }
   const Sources sources = FindSources(mesh);
   if (stopped(0.02))
   {
@@ -345,14 +376,14 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   const double cell = std::max(2.0 * largestSize, 1e-6);
   const PointGrid targetGrid(targetPoints, cell);
   // Boundary voxels are dense: a grid of a few voxels per cell keeps each query short.
-  FidelityGuard fidelity(image, mesh, 2.0 * image.Spacing.maxCoeff(), threads);
+  FidelityGuard fidelity(image, mesh, 2.0 * image.Spacing.maxCoeff(), threads, keepGoing);
   if (stopped(0.07))
   {
     return Status::Aborted();
   }
-  const Eigen::SparseMatrix<double> stiffness =
-    AssembleStiffness(mesh, params.Materials, params.DefaultMaterial, threads);
-  if (progress && !progress(0.1))
+  const Eigen::SparseMatrix<double> stiffness = AssembleStiffness(mesh, params.Materials,
+    params.DefaultMaterial, threads, [&](double fraction) { return !stopped(0.07 + 0.03 * fraction); });
+  if (stopped(0.1))
   {
     return Status::Aborted();
   }
@@ -370,6 +401,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   Eigen::VectorXd du = Eigen::VectorXd::Zero(stiffness.rows());
   for (int iteration = 0; iteration < params.Iterations; ++iteration)
   {
+    const double done = 0.1 + 0.9 * double(iteration) / params.Iterations;
     // Goals: each source's nearest target of an accepted label-set within twice its element
     // size, averaged with the targets whose nearest source it is (so that parts of the image
     // boundary far from every vertex pull the surface too); approached by at most one element
@@ -444,6 +476,10 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
         rhs[3 * p + c] = springs[3 * p + c] * d[c];
       }
     }
+    if (stopped(done))
+    {
+      return Status::Aborted();
+    }
     // A faint anchor on every point keeps pieces of the mesh that no spring holds (a small
     // component with no match) in place, where the bare stiffness would let them float.
     Eigen::SparseMatrix<double> system = stiffness;
@@ -451,7 +487,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     {
       system.coeffRef(i, i) += springs[i] + 1e-6 * stiffness.coeff(i, i);
     }
-    if (progress && !progress(0.1 + 0.9 * double(iteration) / params.Iterations))
+    if (stopped(done))
     {
       return Status::Aborted();
     }
@@ -463,7 +499,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
       {
         break;
       }
-      if (progress && !progress(0.1 + 0.9 * double(iteration) / params.Iterations))
+      if (stopped(done))
       {
         return Status::Aborted();
       }
@@ -474,10 +510,9 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     std::vector<Eigen::Vector3d> trial(x.size());
     std::vector<double> share(x.size(), 1.0);
     std::vector<std::int64_t> bad;
-    const double done = 0.1 + 0.9 * double(iteration) / params.Iterations;
     for (int round = 0; round < 50; ++round)
     {
-      if (progress && !progress(done))
+      if (stopped(done))
       {
         return Status::Aborted();
       }
@@ -488,7 +523,12 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
       bad = BadTets(out, trial, bound, threads);
       if (bad.empty())
       {
-        if (fidelity.Hold(x, trial, share) == 0)
+        const std::size_t held = fidelity.Hold(x, trial, share, keepGoing);
+        if (stop)
+        {
+          return Status::Aborted();
+        }
+        if (held == 0)
         {
           break;
         }
@@ -524,11 +564,11 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
       result.Displacement[p] += trial[p] - x[p];
     }
     x.swap(trial);
-    fidelity.Accept(x);
+    fidelity.Accept(x, keepGoing);
     ++result.Iterations;
     result.MeanStep.push_back(moved / double(sourceCount));
     result.HeldVertices.push_back(heldCount);
-    if (progress && !progress(0.1 + 0.9 * double(iteration + 1) / params.Iterations))
+    if (stopped(0.1 + 0.9 * double(iteration + 1) / params.Iterations))
     {
       return Status::Aborted();
     }

@@ -56,11 +56,13 @@ Eigen::Matrix<double, 12, 12> TetStiffness(const TetMesh& mesh, const Tet& tet, 
 } // namespace
 
 Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
-  const std::map<std::int32_t, Material>& materials, const Material& fallback, int numberOfThreads)
+  const std::map<std::int32_t, Material>& materials, const Material& fallback, int numberOfThreads,
+  const Progress& progress)
 {
   // The pattern first: point p's row holds a 3x3 block for p and for every point sharing an
   // edge with it. Then each tet adds its 12x12 matrix into those blocks. (Building it from
-  // 144 triplets per tet needed 16 bytes per triplet: 1.5 GB on a 650k-tet mesh.)
+  // 144 triplets per tet needed 16 bytes per triplet: 1.5 GB on a 650k-tet mesh.) That takes
+  // seconds on such a mesh: a stop request is looked for between the steps and the batches.
   const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
   std::vector<std::vector<PointId>> neighbours(n);
   for (std::int64_t p = 0; p < n; ++p)
@@ -72,6 +74,10 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
       for (int b = 0; b < 4; ++b)
         if (a != b)
           neighbours[tet[a]].push_back(tet[b]);
+  if (!KeepGoing(progress, 0.1))
+  {
+    return {};
+  }
   std::vector<std::int64_t> rowStart(n + 1, 0); // in blocks
   for (std::int64_t p = 0; p < n; ++p)
   {
@@ -80,11 +86,20 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
     list.erase(std::unique(list.begin(), list.end()), list.end());
     rowStart[p + 1] = rowStart[p] + static_cast<std::int64_t>(list.size());
   }
+  if (!KeepGoing(progress, 0.2))
+  {
+    return {};
+  }
   // Column-major storage of a symmetric matrix: column 3p+c lists the rows of p's blocks.
+  // Written straight into the matrix's arrays: copying them in took most of a second.
   const std::int64_t blocks = rowStart[n];
-  std::vector<int> outer(3 * n + 1);
-  std::vector<int> inner(static_cast<std::size_t>(9 * blocks));
-  std::vector<double> values(static_cast<std::size_t>(9 * blocks), 0.0);
+  const int dofs = static_cast<int>(3 * n);
+  Eigen::SparseMatrix<double> stiffness(dofs, dofs);
+  stiffness.resizeNonZeros(static_cast<Eigen::Index>(9 * blocks));
+  int* outer = stiffness.outerIndexPtr();
+  int* inner = stiffness.innerIndexPtr();
+  double* values = stiffness.valuePtr();
+  std::fill(values, values + 9 * blocks, 0.0);
   for (std::int64_t p = 0; p < n; ++p)
   {
     for (int c = 0; c < 3; ++c)
@@ -107,6 +122,10 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
   std::vector<Eigen::Matrix<double, 12, 12>> local(static_cast<std::size_t>(std::min(batch, tetCount)));
   for (std::int64_t begin = 0; begin < tetCount; begin += batch)
   {
+    if (!KeepGoing(progress, 0.3 + 0.7 * double(begin) / double(tetCount)))
+    {
+      return {};
+    }
     const std::int64_t end = std::min(tetCount, begin + batch);
 #pragma omp parallel for schedule(static) num_threads(ThreadCount(numberOfThreads))
     for (std::int64_t t = begin; t < end; ++t)
@@ -126,7 +145,7 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
           const std::int64_t slot = std::lower_bound(list.begin(), list.end(), tet[a]) - list.begin();
           for (int c = 0; c < 3; ++c)
           {
-            double* column = values.data() + outer[3 * p + c] + 3 * slot;
+            double* column = values + outer[3 * p + c] + 3 * slot;
             for (int r = 0; r < 3; ++r)
             {
               column[r] += local[t - begin](3 * a + r, 3 * b + c);
@@ -136,8 +155,6 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
       }
     }
   }
-  const int dofs = static_cast<int>(3 * n);
-  return Eigen::Map<const Eigen::SparseMatrix<double>>(dofs, dofs, static_cast<int>(values.size()),
-    outer.data(), inner.data(), values.data());
+  return stiffness;
 }
 } // namespace cbc3d

@@ -44,6 +44,13 @@ int ThirdEdgeOfFace(std::uint8_t mask)
   }
   return -1;
 }
+
+// Closing and building the mesh walk every red, a second or more on large meshes: they ask
+// for a stop every so many reds.
+bool StopAt(std::size_t red, const std::function<bool()>& keepGoing)
+{
+  return red % 2048 == 0 && keepGoing && !keepGoing();
+}
 } // namespace
 
 RedGreenMesh::RedGreenMesh(const TetMesh& roots)
@@ -148,9 +155,8 @@ void RedGreenMesh::SplitRed(std::size_t red)
   }
 }
 
-std::size_t RedGreenMesh::Close()
+bool RedGreenMesh::Close(const std::function<bool()>& keepGoing)
 {
-  std::size_t splits = 0;
   bool changed = true;
   while (changed)
   {
@@ -158,6 +164,10 @@ std::size_t RedGreenMesh::Close()
     const std::size_t count = this->RedList.size();
     for (std::size_t red = 0; red < count; ++red)
     {
+      if (StopAt(red, keepGoing))
+      {
+        return false;
+      }
       const Tet tet = this->RedList[red].Points;
       if (this->RedList[red].Leaf && !this->HasClosure(tet))
       {
@@ -169,20 +179,24 @@ std::size_t RedGreenMesh::Close()
           continue;
         }
         this->SplitRed(red);
-        ++splits;
         changed = true;
       }
     }
   }
-  return splits;
+  return true;
 }
 
-void RedGreenMesh::BuildConforming(std::vector<Tet>& tets, std::vector<std::int64_t>& source) const
+bool RedGreenMesh::BuildConforming(std::vector<Tet>& tets, std::vector<std::int64_t>& source,
+  const std::function<bool()>& keepGoing) const
 {
   tets.clear();
   source.clear();
   for (std::size_t red = 0; red < this->RedList.size(); ++red)
   {
+    if (StopAt(red, keepGoing))
+    {
+      return false;
+    }
     if (!this->RedList[red].Leaf)
     {
       continue;
@@ -203,6 +217,7 @@ void RedGreenMesh::BuildConforming(std::vector<Tet>& tets, std::vector<std::int6
       source.push_back(static_cast<std::int64_t>(red));
     }
   }
+  return true;
 }
 
 double RedGreenMesh::LongestEdge(std::size_t red) const

@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <functional>
 #include <unordered_map>
 #include <vector>
 
@@ -43,12 +44,15 @@ public:
   /// Closes the mesh: a leaf with two split edges on one face gets the face's third edge split
   /// too (a green closure, as in CBC3D; far cheaper than a red split, which would split the
   /// neighbours' edges in turn), and any other leaf without a green closure none of whose edges
-  /// is split is red-split, until every leaf has one. Returns the number of red splits.
-  std::size_t Close();
+  /// is split is red-split, until every leaf has one. Asks `keepGoing` every few thousand reds
+  /// and returns false, the closure unfinished, when it says stop.
+  bool Close(const std::function<bool()>& keepGoing = nullptr);
 
   /// The conforming mesh: every leaf, green-split where its edges are split. `source[i]` is
-  /// the red leaf that final tet i comes from. Call after Close().
-  void BuildConforming(std::vector<Tet>& tets, std::vector<std::int64_t>& source) const;
+  /// the red leaf that final tet i comes from. Call after Close(). Asks `keepGoing` every few
+  /// thousand reds; returns false, the mesh unfinished, when it says stop.
+  bool BuildConforming(std::vector<Tet>& tets, std::vector<std::int64_t>& source,
+    const std::function<bool()>& keepGoing = nullptr) const;
 
   /// The longest and the shortest edge of a red tet.
   double LongestEdge(std::size_t red) const;

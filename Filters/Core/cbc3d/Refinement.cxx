@@ -40,8 +40,11 @@ struct LabelledMesh
 bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threads,
   LabelledMesh& mesh, const std::function<bool()>& keepGoing)
 {
+  if (!hierarchy.BuildConforming(mesh.Tets, mesh.Source, keepGoing))
+  {
+    return false;
+  }
   std::atomic<bool> stop(false);
-  hierarchy.BuildConforming(mesh.Tets, mesh.Source);
   const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
   mesh.Counts.resize(count);
   mesh.HoldsVoxelCentres.assign(count, 0);
@@ -182,10 +185,9 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
 
   for (int pass = 0;; ++pass)
   {
-    hierarchy.Close();
     const double done = std::min(0.95, double(pass + 1) / double(expectedPasses + 1));
-    if (!SampleAll(image, hierarchy, params.NumberOfThreads, mesh,
-          [&] { return !progress || progress(done); }))
+    const std::function<bool()> keepGoing = [&] { return KeepGoing(progress, done); };
+    if (!hierarchy.Close(keepGoing) || !SampleAll(image, hierarchy, params.NumberOfThreads, mesh, keepGoing))
     {
       return Status::Aborted();
     }

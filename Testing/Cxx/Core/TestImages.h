@@ -1,9 +1,12 @@
 #ifndef cbc3d_TestImages_h
 #define cbc3d_TestImages_h
 
+#include "cbc3d/BCCLattice.h"
 #include "cbc3d/LabelImage.h"
 
-// Small label images for the core unit tests.
+#include <gtest/gtest.h>
+
+// Small label images for the core unit tests, and their lattices.
 
 /// An n x n x n image of one label, spacing 1, origin 0, identity direction.
 inline cbc3d::LabelImage Cube(int n, std::int32_t label)
@@ -12,6 +15,16 @@ inline cbc3d::LabelImage Cube(int n, std::int32_t label)
   image.Dimensions = { n, n, n };
   image.Labels.assign(static_cast<std::size_t>(n) * n * n, label);
   return image;
+}
+
+/// The BCC lattice of an image, cubes of `edge` mm.
+inline cbc3d::TetMesh Lattice(const cbc3d::LabelImage& image, double edge)
+{
+  cbc3d::LatticeParams params;
+  params.EdgeLength = edge;
+  cbc3d::TetMesh lattice;
+  EXPECT_TRUE(cbc3d::BuildBCCLattice(image, params, lattice).IsOk());
+  return lattice;
 }
 
 #endif

@@ -4,10 +4,14 @@
 #include "cbc3d/SurfacePoints.h"
 #include "cbc3d/TetGeometry.h"
 
+#include "TestImages.h"
+#include "TestProgress.h"
+
 #include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
@@ -97,13 +101,33 @@ TEST(LinearElasticity, RigidMotionsCostNothingAndUniaxialStrainHasItsKnownEnergy
   EXPECT_NEAR(stretch.dot(stiffer * stretch), 2.0 * stretch.dot(k * stretch), 1e-12);
 }
 
+TEST(LinearElasticity, StopsWhenAsked)
+{
+  const Eigen::SparseMatrix<double> k =
+    cbc3d::AssembleStiffness(Cube(), {}, cbc3d::Material(), 1, [](double) { return false; });
+  EXPECT_EQ(k.rows(), 0);
+}
+
+TEST(Deformation, StopsAtEveryPollAssemblyIncluded)
+{
+  const cbc3d::LabelImage image = Ball();
+  const cbc3d::TetMesh start = Lattice(image, 5.0);
+  cbc3d::DeformationParams params;
+  params.Iterations = 2;
+  params.NumberOfThreads = 1;
+  const std::vector<double> fractions = ExpectStopAtEveryPoll([&](const cbc3d::Progress& progress) {
+    cbc3d::TetMesh moved;
+    cbc3d::DeformationResult result;
+    return cbc3d::DeformMesh(image, start, params, moved, result, progress);
+  });
+  // The stiffness assembly reports within (0.07, 0.1).
+  EXPECT_TRUE(std::any_of(fractions.begin(), fractions.end(), [](double f) { return f > 0.07 && f < 0.1; }));
+}
+
 TEST(Deformation, BringsTheSurfaceCloserWithoutSpoilingTets)
 {
   const cbc3d::LabelImage image = Ball();
-  cbc3d::LatticeParams lattice;
-  lattice.EdgeLength = 4.0;
-  cbc3d::TetMesh start;
-  ASSERT_TRUE(cbc3d::BuildBCCLattice(image, lattice, start).IsOk());
+  const cbc3d::TetMesh start = Lattice(image, 4.0);
   cbc3d::DeformationParams params;
   cbc3d::TetMesh moved;
   cbc3d::DeformationResult result;
@@ -132,10 +156,7 @@ TEST(Deformation, BringsTheSurfaceCloserWithoutSpoilingTets)
 TEST(Deformation, SameResultForOneAndTwoThreadsAndZeroIterationsChangesNothing)
 {
   const cbc3d::LabelImage image = Ball();
-  cbc3d::LatticeParams lattice;
-  lattice.EdgeLength = 5.0;
-  cbc3d::TetMesh start;
-  ASSERT_TRUE(cbc3d::BuildBCCLattice(image, lattice, start).IsOk());
+  const cbc3d::TetMesh start = Lattice(image, 5.0);
   cbc3d::DeformationParams params;
   params.Iterations = 3;
   cbc3d::TetMesh one, two;

@@ -63,6 +63,22 @@ int FacePattern(std::uint8_t mask, int f)
   }
   return pattern;
 }
+
+// Two positive BCC tets sharing a face.
+cbc3d::TetMesh TwoBCCTets()
+{
+  cbc3d::TetMesh roots;
+  roots.Points = { { 0.5, 0.5, 0.5 }, { 1.5, 0.5, 0.5 }, { 1, 0, 0 }, { 1, 1, 0 }, { 1, 1, 1 } };
+  roots.Tets = { { 0, 1, 2, 3 }, { 0, 1, 3, 4 } };
+  for (auto& tet : roots.Tets)
+  {
+    const auto& p = roots.Points;
+    if (cbc3d::SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) < 0)
+      std::swap(tet[2], tet[3]);
+  }
+  roots.Labels = { 1, 1 };
+  return roots;
+}
 } // namespace
 
 TEST(RedGreenTables, EveryMaskClosesGreenOrUpgradesToRed)
@@ -140,18 +156,9 @@ TEST(RedGreenTables, AFaceIsSplitTheSameWayWhateverTheRestOfTheTet)
 
 TEST(RedGreenMesh, RefinedBCCTetsKeepTheirAnglesAndTheMeshConforms)
 {
-  // Two BCC tets sharing a face; split one of them twice (a child of it too): the closure
-  // must split the other as needed and leave no hanging point.
-  cbc3d::TetMesh roots;
-  roots.Points = { { 0.5, 0.5, 0.5 }, { 1.5, 0.5, 0.5 }, { 1, 0, 0 }, { 1, 1, 0 }, { 1, 1, 1 } };
-  roots.Tets = { { 0, 1, 2, 3 }, { 0, 1, 3, 4 } };
-  for (auto& tet : roots.Tets)
-  {
-    const auto& p = roots.Points;
-    if (cbc3d::SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) < 0)
-      std::swap(tet[2], tet[3]);
-  }
-  roots.Labels = { 1, 1 };
+  // Split one of two BCC tets twice (a child of it too): the closure must split the other as
+  // needed and leave no hanging point.
+  const cbc3d::TetMesh roots = TwoBCCTets();
   cbc3d::RedGreenMesh mesh(roots);
   mesh.SplitRed(0);
   mesh.SplitRed(2); // the first child of tet 0
@@ -241,4 +248,21 @@ TEST(RedGreenMesh, TwoSplitEdgesOfAFaceForceTheThirdNotARedSplit)
   corner.SplitEdge(0, 3);
   corner.Close();
   EXPECT_EQ(corner.Reds().size(), 9u); // the root and its 8 red children
+}
+
+TEST(RedGreenMesh, ClosingAndBuildingStopWhenAsked)
+{
+  cbc3d::RedGreenMesh mesh(TwoBCCTets());
+  mesh.SplitRed(0);
+  mesh.SplitRed(2);
+  const auto stop = [] { return false; };
+  EXPECT_FALSE(mesh.Close(stop));
+  const std::size_t reds = mesh.Reds().size();
+  EXPECT_TRUE(mesh.Close([] { return true; }));
+  EXPECT_GT(mesh.Reds().size(), reds); // the stop came before the closure's first split
+  std::vector<cbc3d::Tet> tets;
+  std::vector<std::int64_t> source;
+  EXPECT_FALSE(mesh.BuildConforming(tets, source, stop));
+  EXPECT_TRUE(mesh.BuildConforming(tets, source, [] { return true; }));
+  EXPECT_FALSE(tets.empty());
 }

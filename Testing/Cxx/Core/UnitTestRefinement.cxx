@@ -5,6 +5,7 @@
 #include "cbc3d/TissueComponents.h"
 
 #include "TestImages.h"
+#include "TestProgress.h"
 
 #include <gtest/gtest.h>
 
@@ -32,15 +33,6 @@ cbc3d::LabelImage BallAndTube()
   for (int i = 8; i < 20; ++i)
     image.Labels[image.VoxelIndex(i, 23, 23)] = 2;
   return image;
-}
-
-cbc3d::TetMesh Lattice(const cbc3d::LabelImage& image, double edge)
-{
-  cbc3d::LatticeParams params;
-  params.EdgeLength = edge;
-  cbc3d::TetMesh lattice;
-  EXPECT_TRUE(cbc3d::BuildBCCLattice(image, params, lattice).IsOk());
-  return lattice;
 }
 
 // Exact key of a point, so that a midpoint computed as 0.5 (a + b) finds the vertex made the
@@ -206,6 +198,19 @@ TEST(Refinement, RefusesBadParametersAndStopsWhenAsked)
   params.MinimumEdgeLength = 0.0;
   EXPECT_FALSE(cbc3d::RefineMesh(image, cbc3d::TetMesh(), params, mesh, result).IsOk());
   EXPECT_TRUE(cbc3d::RefineMesh(image, lattice, params, mesh, result, [](double) { return false; }).WasAborted());
+}
+
+TEST(Refinement, StopsAtEveryPoll)
+{
+  const cbc3d::LabelImage image = BallAndTube();
+  const cbc3d::TetMesh lattice = Lattice(image, 6.0);
+  cbc3d::RefinementParams params;
+  params.NumberOfThreads = 1;
+  ExpectStopAtEveryPoll([&](const cbc3d::Progress& progress) {
+    cbc3d::TetMesh mesh;
+    cbc3d::RefinementResult result;
+    return cbc3d::RefineMesh(image, lattice, params, mesh, result, progress);
+  });
 }
 
 TEST(TissueComponents, FaceConnectedOnly)
