@@ -3,7 +3,8 @@
 // image's world frame, and measures it with vtkCBC3DMeshQuality, the ruler cbc3d uses.
 //   CBC3DCGALMesh3 IMAGE.nii.gz OUT.vtu [--background L] [--deterministic]
 // --deterministic turns off the time limits of CGAL's perturber and exuder, whose default
-// (the refinement's own time) makes the result depend on the machine's load.
+// (the refinement's own time) makes the result depend on the machine's load. Prints a summary
+// line, then one JSON line for benchmark_meshing.py (the mesh's figures and each tissue's).
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DMeshQuality.h"
 #include "vtkCBC3DNIfTIReader.h"
@@ -158,12 +159,29 @@ int main(int argc, char* argv[])
     f->GetArray("MinDihedralAngle")->GetTuple1(0), f->GetArray("MaxDihedralAngle")->GetTuple1(0),
     f->GetArray("HausdorffDistance")->GetTuple1(0), f->GetArray("HausdorffDistance95")->GetTuple1(0),
     f->GetArray("MeanSurfaceDistance")->GetTuple1(0), seconds);
-  std::printf("{\"tetrahedra\": %lld, \"points\": %lld, \"min_dihedral_deg\": %.6f, \"max_dihedral_deg\": %.6f, "
-              "\"hausdorff_mm\": %.6f, \"hausdorff_95_mm\": %.6f, \"mean_distance_mm\": %.6f, \"seconds\": %.3f}\n",
+  // One JSON line for the benchmark script, with the keys of cbc3d's --report, the mesh's
+  // figures and each tissue's Hausdorff distances.
+  namespace names = vtkCBC3DArrayNames;
+  auto value = [f](const char* name, vtkIdType i) { return f->GetArray(name)->GetTuple1(i); };
+  char text[512];
+  std::snprintf(text, sizeof(text),
+    "{\"tetrahedra\": %lld, \"points\": %lld, \"min_dihedral_deg\": %.6f, \"max_dihedral_deg\": %.6f, "
+    "\"hausdorff_mm\": %.6f, \"hausdorff_95_mm\": %.6f, \"mean_distance_mm\": %.6f, \"seconds\": %.3f, \"tissues\": {",
     static_cast<long long>(mesh->GetNumberOfCells()), static_cast<long long>(mesh->GetNumberOfPoints()),
-    f->GetArray("MinDihedralAngle")->GetTuple1(0), f->GetArray("MaxDihedralAngle")->GetTuple1(0),
-    f->GetArray("HausdorffDistance")->GetTuple1(0), f->GetArray("HausdorffDistance95")->GetTuple1(0),
-    f->GetArray("MeanSurfaceDistance")->GetTuple1(0), seconds);
+    value(names::MinDihedralAngle, 0), value(names::MaxDihedralAngle, 0), value(names::HausdorffDistance, 0),
+    value(names::HausdorffDistance95, 0), value(names::MeanSurfaceDistance, 0), seconds);
+  std::string json = text;
+  const vtkIdType tissues = f->GetArray(names::TissueLabel) ? f->GetArray(names::TissueLabel)->GetNumberOfTuples() : 0;
+  for (vtkIdType i = 0; i < tissues; ++i)
+  {
+    std::snprintf(text, sizeof(text),
+      "%s\"%d\": {\"tetrahedra\": %lld, \"hausdorff_mm\": %.6f, \"hausdorff_95_mm\": %.6f, \"mean_distance_mm\": %.6f}",
+      i ? ", " : "", static_cast<int>(value(names::TissueLabel, i)),
+      static_cast<long long>(value(names::TissueTetCount, i)), value(names::TissueHausdorffDistance, i),
+      value(names::TissueHausdorffDistance95, i), value(names::TissueMeanSurfaceDistance, i));
+    json += text;
+  }
+  std::printf("%s}}\n", json.c_str());
   vtkNew<vtkXMLUnstructuredGridWriter> writer;
   writer->SetInputConnection(quality->GetOutputPort());
   writer->SetFileName(argv[2]);

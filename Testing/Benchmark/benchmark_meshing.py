@@ -1,94 +1,425 @@
 #!/usr/bin/env python3
-"""Meshes every image in ../shared/data with the paper's settings (Table 3: `--bcc-size 8
---fidelity 0.95 --pattern edge --iterations 5`; background 1 for the k-means head) and prints
-a Markdown table: tets, points, dihedral angles, Hausdorff distance, voxel fidelity, components,
-seconds per stage and peak memory. Where the CGAL Mesh_3 peer was built (Debian's libcgal-dev
-installed before configuring), it meshes the same images with the paper's CGAL settings, time
-limits off (deterministic), measured by the same quality filter, and the table puts both side by
-side with ratios. Writes the figures as JSON too. Asserts nothing: read the figures.
+"""Benchmark of cbc3d on the real images of ../shared/data, with CGAL Mesh_3 beside it.
 
-    python3 Testing/Benchmark/benchmark_meshing.py [BUILD_DIR] [--iterations N] [--json FILE] [--no-cgal]
+Meshes every image with the paper's settings (Table 3: `--bcc-size 8 --fidelity 0.95 --pattern
+edge --iterations 5`; background 1 for the k-means head) and prints Markdown tables:
+
+- comparison: tets, points, dihedral angles, Hausdorff distance (HD), voxel fidelity, seconds and
+  peak memory of cbc3d; where the CGAL Mesh_3 peer was built (Debian's libcgal-dev installed
+  before configuring), CGAL on the same image with the paper's CGAL settings, once with the
+  perturber's and exuder's time limits off (deterministic) and once or more (--cgal-runs) by
+  default, where those limits make the result depend on the machine's load; the ratios are
+  cbc3d against the deterministic run; the paper's published figures where it has them;
+- cbc3d's seconds per stage;
+- HD per tissue, cbc3d and CGAL;
+- scaling: the brain upsampled 2x and 4x per axis (nearest neighbour, same world extent), meshed
+  by cbc3d at 1 and 2 threads (and all cores where there are more): time and memory against
+  image size and thread count.
+
+Writes every figure as JSON too. Asserts nothing: read the figures. Exits 0 with a message
+where ../shared/data is missing.
+
+    python3 Testing/Benchmark/benchmark_meshing.py [BUILD_DIR] [--iterations N] [--json FILE]
+        [--no-cgal] [--cgal-runs N] [--images NAME ...] [--no-scaling | --scaling-only]
+        [--scaling-factors 1,2,4] [--scaling-threads 1,2]
 """
+import argparse
+import array
+import gzip
 import json
 import os
+import resource
+import struct
 import subprocess
 import sys
 import tempfile
+import time
 
-here = os.path.dirname(os.path.abspath(__file__))
-root = os.path.dirname(os.path.dirname(here))
-args = sys.argv[1:]
-
-
-def option(name, default):
-    return args[args.index(name) + 1] if name in args else default
-
-
-positional = [a for i, a in enumerate(args) if not a.startswith("--") and (i == 0 or not args[i - 1] in ("--iterations", "--json"))]
-build = positional[0] if positional else os.path.join(root, "build")
-if os.path.basename(build) == "cbc3d":  # a path to the binary also works
-    build = os.path.dirname(os.path.dirname(build))
-cli = os.path.join(build, "bin", "cbc3d")
-cgal = os.path.join(build, "bin", "CBC3DCGALMesh3")
-iterations = option("--iterations", "5")
-json_path = option("--json", "benchmark.json")
-use_cgal = "--no-cgal" not in args and os.path.exists(cgal)
-shared = os.path.join(root, "..", "shared", "data")
-if not os.path.isdir(shared):
-    print("skipped: no ../shared/data beside the checkout")
-    sys.exit(0)
-
-# The paper's Table 4, case 1 (= cbc3d-brain.nii.gz).
-PAPER = {"cbc3d-brain.nii.gz": {"CBC3D paper": (69101, 12.20, 157.67, 3.47), "CGAL 4.5.2 (paper)": (414470, 12.01, 162.27, 3.21)}}
-
-
-images = [("cbc3d-brain.nii.gz", 0), ("cbc3d-nidus.nii.gz", 0), ("cbc3d-ventricles.nii.gz", 0),
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+SHARED = os.path.join(ROOT, "..", "shared", "data")
+PAPER_SETTINGS = ["--bcc-size", "8", "--fidelity", "0.95", "--pattern", "edge"]
+CGAL_SETTINGS = "facet angle 30, size 2, distance 2, radius-edge 1.5, cell size 2.5"
+STAGES = ("read", "lattice", "refinement", "deformation", "quality", "write")
+IMAGES = [("cbc3d-brain.nii.gz", 0), ("cbc3d-nidus.nii.gz", 0), ("cbc3d-ventricles.nii.gz", 0),
           ("nipype-tissue-labels.nii.gz", 0), ("itk-t1-kmeans-labels.nii.gz", 1)]
-results = {}
-print("cbc3d --bcc-size 8 --fidelity 0.95 --pattern edge --iterations %s%s" % (
-    iterations, "; CGAL Mesh_3: facet angle 30, size 2, distance 2, radius-edge 1.5, cell size 2.5, no time limits" if use_cgal else "; CGAL peer not built"))
-print()
-print("| image | mesher | tets | points | min / max dihedral | HD mm (95%, mean) | F1 / F2 worst | seconds | peak MB |")
-print("|---|---|---|---|---|---|---|---|---|")
-with tempfile.TemporaryDirectory() as work:
-    for name, background in images:
-        path = os.path.join(shared, name)
-        report_path = os.path.join(work, "report.json")
-        process = subprocess.Popen([cli, path, "-o", os.path.join(work, "mesh.vtu"), "--bcc-size", "8", "--fidelity", "0.95",
-                                    "--pattern", "edge", "--iterations", iterations, "--background", str(background),
-                                    "--quiet", "--report", report_path], stderr=subprocess.PIPE, text=True)
-        _, status, usage = os.wait4(process.pid, 0)  # this run's own peak memory
-        entry = results.setdefault(name, {})
-        if os.waitstatus_to_exitcode(status) != 0:
-            print("| %s | cbc3d | failed: %s |" % (name, process.stderr.read().strip()))
+SCALING_IMAGE = "cbc3d-brain.nii.gz"
+# The paper's Table 4, case 1 (= cbc3d-brain.nii.gz): tets, min and max dihedral, HD.
+PAPER = {"cbc3d-brain.nii.gz": {"CBC3D paper": (69101, 12.20, 157.67, 3.47),
+                                "CGAL 4.5.2 (paper)": (414470, 12.01, 162.27, 3.21)}}
+
+
+def parse_arguments():
+    parser = argparse.ArgumentParser(description="cbc3d benchmark on ../shared/data, CGAL Mesh_3 beside it")
+    parser.add_argument("build", nargs="?", default=os.path.join(ROOT, "build"),
+                        help="build folder, or the path of its bin/cbc3d (default: build)")
+    parser.add_argument("--iterations", default="5", help="cbc3d deformation iterations (default 5, the paper's)")
+    parser.add_argument("--json", default="benchmark.json", help="where the figures go (default benchmark.json)")
+    parser.add_argument("--no-cgal", action="store_true", help="cbc3d alone")
+    parser.add_argument("--cgal-runs", type=int, default=1,
+                        help="CGAL default (time-limited) runs per image, to show their spread (default 1)")
+    parser.add_argument("--images", nargs="+", metavar="NAME",
+                        help="only the images whose file name contains one of these")
+    parts = parser.add_mutually_exclusive_group()
+    parts.add_argument("--no-scaling", action="store_true", help="skip the scaling runs")
+    parts.add_argument("--scaling-only", action="store_true", help="only the scaling runs")
+    parser.add_argument("--scaling-factors", default="1,2,4", help="upsampling factors per axis (default 1,2,4)")
+    parser.add_argument("--scaling-threads", help="thread counts (default 1,2 and all cores where there are more)")
+    options = parser.parse_args()
+    if os.path.basename(options.build) == "cbc3d":  # a path to the binary also works
+        options.build = os.path.dirname(os.path.dirname(options.build))
+    options.factors = [int(f) for f in options.scaling_factors.split(",")]
+    options.threads = ([int(t) for t in options.scaling_threads.split(",")] if options.scaling_threads
+                       else sorted({1, 2, os.cpu_count() or 1}))
+    return options
+
+
+def progress(text):
+    """Progress goes to stderr so that stdout holds only the tables."""
+    print(text, file=sys.stderr, flush=True)
+
+
+def available_memory_bytes():
+    with open("/proc/meminfo") as meminfo:
+        for line in meminfo:
+            if line.startswith("MemAvailable:"):
+                return int(line.split()[1]) * 1024
+    return None
+
+
+def run_measured(command, memory_limit=None):
+    """Runs command; returns its exit code, stdout, stderr, wall seconds and its own peak resident
+    memory in MB. memory_limit caps its address space, so that a run too big for the machine
+    fails by itself instead of calling the kernel's OOM killer onto other processes."""
+    def limit():
+        resource.setrlimit(resource.RLIMIT_AS, (memory_limit, memory_limit))
+    with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
+        start = time.monotonic()
+        process = subprocess.Popen(command, stdout=out, stderr=err, text=True,
+                                   preexec_fn=limit if memory_limit else None)
+        _, status, usage = os.wait4(process.pid, 0)  # this child's own rusage, not the script's
+        process.returncode = os.waitstatus_to_exitcode(status)
+        seconds = time.monotonic() - start
+        out.seek(0)
+        err.seek(0)
+        return process.returncode, out.read(), err.read(), seconds, usage.ru_maxrss / 1024.0
+
+
+def failure(code, err):
+    """A short reason for a failed run, for the table: how it ended and its last message."""
+    lines = err.strip().splitlines()
+    ending = "killed by signal %d" % -code if code < 0 else "exit %d" % code
+    return ending + (": " + lines[-1].strip() if lines else "")
+
+
+def run_cbc3d(cli, image, background, iterations, work, threads=0, memory_limit=None):
+    """cbc3d with the paper's settings: its --report figures plus peak_mb and wall_seconds, or
+    {"error": reason}."""
+    report = os.path.join(work, "report.json")
+    if os.path.exists(report):
+        os.remove(report)
+    command = [cli, image, "-o", os.path.join(work, "mesh.vtu")] + PAPER_SETTINGS + [
+        "--iterations", iterations, "--background", str(background), "--threads", str(threads),
+        "--quiet", "--report", report]
+    code, _, err, seconds, peak = run_measured(command, memory_limit)
+    if code != 0:
+        return {"error": failure(code, err), "peak_mb": peak}
+    with open(report) as r:
+        return dict(json.load(r), peak_mb=peak, wall_seconds=seconds)
+
+
+def run_cgal(cgal, image, background, work, deterministic):
+    """The CGAL Mesh_3 peer: its JSON line (seconds = make_mesh_3 alone) plus peak_mb and
+    wall_seconds (reading, meshing, measuring, writing), or {"error": reason}."""
+    command = [cgal, image, os.path.join(work, "cgal.vtu"), "--background", str(background)]
+    code, out, err, seconds, peak = run_measured(command + (["--deterministic"] if deterministic else []))
+    lines = [line for line in out.splitlines() if line.startswith("{")]
+    if code != 0 or not lines:
+        return {"error": failure(code, err), "peak_mb": peak}
+    return dict(json.loads(lines[-1]), peak_mb=peak, wall_seconds=seconds)
+
+
+def print_table(header, rows):
+    print("| " + " | ".join(header) + " |")
+    print("|" + "---|" * len(header))
+    for row in rows:
+        print("| " + " | ".join(row) + " |")
+    print()
+
+
+def hd_text(r):
+    return "%.2f (%.2f, %.2f)" % (r["hausdorff_mm"], r["hausdorff_95_mm"], r["mean_distance_mm"])
+
+
+def mesh_row(name, mesher, r, seconds, fidelity=""):
+    """One comparison row: a failed run says why in the tets column."""
+    if "error" in r:
+        return [name, mesher, "failed: " + r["error"]] + [""] * 6
+    return [name, mesher, "%d" % r["tetrahedra"], "%d" % r["points"],
+            "%.2f / %.2f" % (r["min_dihedral_deg"], r["max_dihedral_deg"]), hd_text(r), fidelity,
+            "%.2f" % seconds, "%.0f" % r["peak_mb"]]
+
+
+def worst_fidelity(r):
+    tissues = r["tissues"].values()
+    return "%.3f / %.3f" % (min(t.get("fidelity_f1", float("nan")) for t in tissues),
+                            min(t.get("fidelity_f2", float("nan")) for t in tissues))
+
+
+def mesh_images(options, images, cli, cgal):
+    """cbc3d, CGAL deterministic and CGAL default on each image: {name: figures}."""
+    results = {}
+    with tempfile.TemporaryDirectory() as work:
+        for name, background in images:
+            path = os.path.join(SHARED, name)
+            progress("cbc3d on %s" % name)
+            entry = results[name] = {"cbc3d": run_cbc3d(cli, path, background, options.iterations, work)}
+            if cgal:
+                progress("CGAL Mesh_3 (no time limits) on %s" % name)
+                entry["cgal_deterministic"] = run_cgal(cgal, path, background, work, True)
+                entry["cgal_default"] = []
+                for run in range(options.cgal_runs):
+                    progress("CGAL Mesh_3 (default) on %s, run %d of %d" % (name, run + 1, options.cgal_runs))
+                    entry["cgal_default"].append(run_cgal(cgal, path, background, work, False))
+    return results
+
+
+def print_comparison(results, cgal_runs):
+    rows = []
+    with_cgal = any("cgal_deterministic" in entry for entry in results.values())
+    for name, entry in results.items():
+        ours = entry["cbc3d"]
+        rows.append(mesh_row(name, "cbc3d", ours, ours.get("seconds", {}).get("total", 0),
+                             "" if "error" in ours else worst_fidelity(ours)))
+        if "cgal_deterministic" in entry:
+            exact = entry["cgal_deterministic"]
+            rows.append(mesh_row(name, "CGAL Mesh_3 no time limits", exact, exact.get("seconds", 0)))
+            for run, c in enumerate(entry["cgal_default"]):
+                label = "CGAL Mesh_3 default" + (" #%d" % (run + 1) if cgal_runs > 1 else "")
+                rows.append(mesh_row(name, label, c, c.get("seconds", 0)))
+            if "error" not in ours and "error" not in exact:
+                rows.append([name, "ratio cbc3d / CGAL no time limits",
+                             "%.2f" % (ours["tetrahedra"] / exact["tetrahedra"]), "", "",
+                             "%.2f" % (ours["hausdorff_mm"] / exact["hausdorff_mm"]), "",
+                             "%.3f" % (ours["seconds"]["total"] / exact["seconds"]), ""])
+        for label, (tets, low, high, hd) in PAPER.get(name, {}).items():
+            rows.append([name, label, "%d" % tets, "", "%.2f / %.2f" % (low, high), "%.2f" % hd, "", "", ""])
+    print("Seconds: cbc3d's whole run (reading, meshing, measuring, writing)%s." % (
+        "; CGAL's make_mesh_3 alone. Ratios: cbc3d against CGAL with no time limits (deterministic); "
+        "CGAL's default runs stop its perturber and exuder after the time its refinement took, so they "
+        "vary with the machine's load" if with_cgal else ""))
+    print()
+    print_table(["image", "mesher", "tets", "points", "min / max dihedral", "HD mm (95%, mean)",
+                 "F1 / F2 worst", "seconds", "peak MB"], rows)
+
+
+def stage_cells(r):
+    return ["%.2f" % r["seconds"][stage] for stage in STAGES + ("total",)]
+
+
+def print_stages(results):
+    rows = [[name] + stage_cells(entry["cbc3d"]) + ["%.0f" % entry["cbc3d"]["peak_mb"]]
+            for name, entry in results.items() if "error" not in entry["cbc3d"]]
+    print("cbc3d seconds per stage (all cores):")
+    print()
+    print_table(["image"] + list(STAGES) + ["total", "peak MB"], rows)
+
+
+def print_tissues(results):
+    """HD per tissue: cbc3d, CGAL deterministic, CGAL default (each run)."""
+    rows = []
+    for name, entry in results.items():
+        ours = entry["cbc3d"]
+        if "error" in ours:
             continue
-        r = json.load(open(report_path))
-        tissues = r["tissues"].values()
-        entry["cbc3d"] = dict(r, peak_mb=usage.ru_maxrss / 1024.0)
-        print("| %s | cbc3d | %d | %d | %.2f / %.2f | %.2f (%.2f, %.2f) | %.3f / %.3f | %.2f | %.0f |" % (
-            name, r["tetrahedra"], r["points"], r["min_dihedral_deg"], r["max_dihedral_deg"], r["hausdorff_mm"],
-            r["hausdorff_95_mm"], r["mean_distance_mm"], min(t.get("fidelity_f1", float("nan")) for t in tissues),
-            min(t.get("fidelity_f2", float("nan")) for t in tissues), r["seconds"]["total"], usage.ru_maxrss / 1024.0))
-        if use_cgal:
-            process = subprocess.Popen([cgal, path, os.path.join(work, "cgal.vtu"), "--background", str(background), "--deterministic"],
-                                       stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-            out = process.stdout.read()
-            _, status, usage = os.wait4(process.pid, 0)
-            lines = [l for l in out.splitlines() if l.startswith("{")]
-            if os.waitstatus_to_exitcode(status) != 0 or not lines:
-                print("| %s | CGAL Mesh_3 | failed |" % name)
-            else:
-                c = dict(json.loads(lines[-1]), peak_mb=usage.ru_maxrss / 1024.0)
-                entry["cgal"] = c
-                print("| %s | CGAL Mesh_3 | %d | %d | %.2f / %.2f | %.2f (%.2f, %.2f) | | %.2f | %.0f |" % (
-                    name, c["tetrahedra"], c["points"], c["min_dihedral_deg"], c["max_dihedral_deg"], c["hausdorff_mm"],
-                    c["hausdorff_95_mm"], c["mean_distance_mm"], c["seconds"], c["peak_mb"]))
-                o = entry["cbc3d"]
-                print("| %s | ratio cbc3d / CGAL | %.2f | | | %.2f | | %.3f | |" % (
-                    name, o["tetrahedra"] / c["tetrahedra"], o["hausdorff_mm"] / c["hausdorff_mm"], o["seconds"]["total"] / c["seconds"]))
-        for label, (tets, lo, hi, hd) in PAPER.get(name, {}).items():
-            print("| %s | %s | %d | | %.2f / %.2f | %.2f | | | |" % (name, label, tets, lo, hi, hd))
-with open(json_path, "w") as out:
-    json.dump(results, out, indent=2)
-print()
-print("figures written to %s" % json_path)
+        for label, t in ours["tissues"].items():
+            row = [name, label, "%d" % t["tetrahedra"], hd_text(t),
+                   "%.3f / %.3f" % (t.get("fidelity_f1", float("nan")), t.get("fidelity_f2", float("nan")))]
+            if "cgal_deterministic" in entry:
+                exact = entry["cgal_deterministic"].get("tissues", {}).get(label)
+                defaults = [c.get("tissues", {}).get(label) for c in entry["cgal_default"]]
+                row += ["%d" % exact["tetrahedra"] if exact else "-", hd_text(exact) if exact else "-",
+                        ", ".join("%.2f" % c["hausdorff_mm"] if c else "-" for c in defaults)]
+            rows.append(row)
+    header = ["image", "tissue", "cbc3d tets", "cbc3d HD mm (95%, mean)", "cbc3d F1 / F2"]
+    if any("cgal_deterministic" in entry for entry in results.values()):
+        header += ["CGAL tets", "CGAL no time limits HD mm (95%, mean)", "CGAL default HD mm"]
+    print("Hausdorff distance per tissue (a tissue CGAL lost is '-'):")
+    print()
+    print_table(header, rows)
+
+
+def read_nifti_header(stream):
+    """The bytes up to the voxels (header and extensions) and the byte order."""
+    start = stream.read(352)
+    order = "<" if struct.unpack("<i", start[:4])[0] == 348 else ">"
+    if struct.unpack(order + "i", start[:4])[0] != 348:
+        raise ValueError("not a NIfTI-1 file")
+    offset = int(struct.unpack(order + "f", start[108:112])[0])
+    return bytearray(start + stream.read(max(0, offset - 352))), order
+
+
+def open_nifti(path):
+    return gzip.open(path, "rb") if path.endswith(".gz") else open(path, "rb")
+
+
+def voxel_count(path):
+    with open_nifti(path) as stream:
+        header, order = read_nifti_header(stream)
+    nx, ny, nz = struct.unpack_from(order + "3h", header, 42)
+    return nx * ny * nz
+
+
+def upsampled_header(header, order, factor):
+    """The header of the image upsampled factor times per axis over the same world extent: sizes
+    times factor, spacing and both frames' axes divided by it, and origins moved to the first
+    new voxel's centre, (factor - 1) / (2 factor) of an old voxel before the old one's."""
+    dims = list(struct.unpack_from(order + "8h", header, 40))
+    pixdim = list(struct.unpack_from(order + "8f", header, 76))
+    b, c, d = struct.unpack_from(order + "3f", header, 256)
+    qoffset = list(struct.unpack_from(order + "3f", header, 268))
+    srow = [list(struct.unpack_from(order + "4f", header, 280 + 16 * r)) for r in range(3)]
+    shift = -(factor - 1) / (2.0 * factor)  # in old voxels along each axis
+    # qform: rotation (quaternion) times diag(pixdim, qfac), qfac the sign of pixdim[0].
+    a = max(0.0, 1.0 - b * b - c * c - d * d) ** 0.5
+    rotation = [[a * a + b * b - c * c - d * d, 2 * (b * c - a * d), 2 * (b * d + a * c)],
+                [2 * (b * c + a * d), a * a + c * c - b * b - d * d, 2 * (c * d - a * b)],
+                [2 * (b * d - a * c), 2 * (c * d + a * b), a * a + d * d - b * b - c * c]]
+    scale = [pixdim[1], pixdim[2], pixdim[3] * (-1.0 if pixdim[0] < 0 else 1.0)]
+    for r in range(3):
+        qoffset[r] += shift * sum(rotation[r][k] * scale[k] for k in range(3))
+        srow[r][3] += shift * sum(srow[r][:3])
+        srow[r][:3] = [x / factor for x in srow[r][:3]]
+    for axis in (1, 2, 3):
+        if dims[axis] * factor > 32767:
+            raise ValueError("%d x %d voxels do not fit a NIfTI-1 size" % (dims[axis], factor))
+        dims[axis] *= factor
+        pixdim[axis] /= factor
+    struct.pack_into(order + "8h", header, 40, *dims)
+    struct.pack_into(order + "8f", header, 76, *pixdim)
+    struct.pack_into(order + "3f", header, 268, *qoffset)
+    for r in range(3):
+        struct.pack_into(order + "4f", header, 280 + 16 * r, *srow[r])
+    return header
+
+
+def upsample_nifti(source, target, factor):
+    """Writes source upsampled factor times per axis by nearest neighbour as uncompressed NIfTI,
+    one slice at a time (a 4x brain is 471 M voxels): x by strided array assignment, y by
+    repeating rows, z by writing the slice factor times."""
+    with open_nifti(source) as src, open(target, "wb") as dst:
+        header, order = read_nifti_header(src)
+        nx, ny, nz = struct.unpack_from(order + "3h", header, 42)
+        size = struct.unpack_from(order + "h", header, 72)[0] // 8
+        code = next(t for t in "BHILQ" if array.array(t).itemsize == size)  # copies bytes: any type of that size
+        header = upsampled_header(header, order, factor)
+        dst.write(header)
+        row = nx * factor * size
+        for _ in range(nz):
+            plane = array.array(code, src.read(nx * ny * size))
+            if len(plane) != nx * ny:
+                raise ValueError("%s ends early" % source)
+            wide = array.array(code, bytes(len(plane) * factor * size))
+            for k in range(factor):
+                wide[k::factor] = plane
+            wide = wide.tobytes()
+            slab = b"".join(wide[y * row:(y + 1) * row] * factor for y in range(ny))
+            for _ in range(factor):
+                dst.write(slab)
+
+
+def run_scaling(options, cli):
+    """cbc3d on the brain at each factor and thread count: a list of figures."""
+    runs = []
+    memory_limit = available_memory_bytes()
+    with tempfile.TemporaryDirectory() as work:
+        for factor in options.factors:
+            path = os.path.join(SHARED, SCALING_IMAGE)
+            if factor != 1:
+                progress("upsampling %s %dx per axis" % (SCALING_IMAGE, factor))
+                path = os.path.join(work, "brain-%dx.nii" % factor)
+                upsample_nifti(os.path.join(SHARED, SCALING_IMAGE), path, factor)
+            voxels = voxel_count(path)
+            for threads in options.threads:
+                progress("cbc3d on the brain %dx, %d thread%s" % (factor, threads, "s" if threads > 1 else ""))
+                r = run_cbc3d(cli, path, 0, options.iterations, work, threads, memory_limit)
+                runs.append(dict(r, factor=factor, threads=threads, voxels=voxels))
+            if factor != 1:
+                os.remove(path)
+    return runs
+
+
+def print_scaling(runs):
+    """Speed-up: 1 thread's total over this run's, same image. Time and memory / 1x: against the
+    original brain at the same thread count."""
+    def find(factor, threads):
+        return next((r for r in runs if r["factor"] == factor and r["threads"] == threads and "error" not in r), None)
+    rows = []
+    for r in runs:
+        head = ["%dx" % r["factor"], "{:,}".format(r["voxels"]), "%d" % r["threads"]]
+        if "error" in r:
+            rows.append(head + ["failed: " + r["error"]] + [""] * 12)
+            continue
+        single, base = find(r["factor"], 1), find(1, r["threads"])
+        total = r["seconds"]["total"]
+        rows.append(head + ["%d" % r["tetrahedra"], "%.2f" % r["hausdorff_mm"]] + stage_cells(r) + [
+            "%.0f" % r["peak_mb"],
+            "%.2f" % (single["seconds"]["total"] / total) if single else "",
+            "%.2f" % (total / base["seconds"]["total"]) if base else "",
+            "%.2f" % (r["peak_mb"] / base["peak_mb"]) if base else ""])
+    print("Scaling: %s upsampled per axis (nearest neighbour, same world extent), cbc3d with the paper's "
+          "settings. Speed-up: against 1 thread on the same image; time and memory / 1x: against the "
+          "original image at the same thread count." % SCALING_IMAGE)
+    print()
+    print_table(["brain", "voxels", "threads", "tets", "HD mm"] + list(STAGES) +
+                ["total s", "peak MB", "speed-up", "time / 1x", "memory / 1x"], rows)
+
+
+def describe_cgal(cgal, no_cgal):
+    if cgal:
+        return "CGAL Mesh_3: %s" % CGAL_SETTINGS
+    if no_cgal:
+        return "CGAL Mesh_3 left out (--no-cgal): cbc3d alone"
+    return "CGAL Mesh_3 peer not built (install libcgal-dev, then configure and build again): cbc3d alone"
+
+
+def main():
+    options = parse_arguments()
+    if not os.path.isdir(SHARED):
+        print("skipped: no ../shared/data beside the checkout")
+        return 0
+    cli = os.path.join(options.build, "bin", "cbc3d")
+    if not os.path.exists(cli):
+        print("no %s: build first (cmake -S . -B build && cmake --build build)" % cli)
+        return 1
+    cgal = os.path.join(options.build, "bin", "CBC3DCGALMesh3")
+    if options.no_cgal or not os.path.exists(cgal):
+        cgal = None
+    images = [(name, background) for name, background in IMAGES
+              if not options.images or any(part in name for part in options.images)]
+    if not images:
+        print("no image of %s matches %s" % (", ".join(name for name, _ in IMAGES), " ".join(options.images)))
+        return 1
+    figures = {"machine": {"cpus": os.cpu_count(), "memory_available_mb": (available_memory_bytes() or 0) / 2**20},
+               "settings": {"cbc3d": " ".join(PAPER_SETTINGS + ["--iterations", options.iterations]),
+                            "cgal": CGAL_SETTINGS if cgal else None}}
+    print("cbc3d %s --iterations %s" % (" ".join(PAPER_SETTINGS), options.iterations))
+    if not options.scaling_only:
+        print(describe_cgal(cgal, options.no_cgal))
+    print()
+    if not options.scaling_only:
+        figures["images"] = mesh_images(options, images, cli, cgal)
+        print_comparison(figures["images"], options.cgal_runs)
+        print_stages(figures["images"])
+        print_tissues(figures["images"])
+    if not options.no_scaling:
+        figures["scaling"] = run_scaling(options, cli)
+        print_scaling(figures["scaling"])
+    with open(options.json, "w") as out:
+        json.dump(figures, out, indent=2)
+    print("figures written to %s" % options.json)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
