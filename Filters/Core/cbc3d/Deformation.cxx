@@ -119,14 +119,7 @@ std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::
       bad[t] = 1;
       continue;
     }
-    for (const double a : DihedralAngles(x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]))
-    {
-      if (a < minimumRadians || a > M_PI - minimumRadians)
-      {
-        bad[t] = 1;
-        break;
-      }
-    }
+    bad[t] = !DihedralAnglesWithin(x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]], minimumRadians);
   }
   std::vector<std::int64_t> result;
   for (std::int64_t t = 0; t < count; ++t)

@@ -4,13 +4,12 @@
 #include <Eigen/Core>
 
 #include <cstdint>
-#include <utility>
 #include <vector>
 
 namespace cbc3d
 {
-/// Points bucketed on a uniform grid, for nearest-point queries within a radius. Holds a
-/// reference to the points: they must outlive the grid and stay in place.
+/// Points bucketed on a uniform grid over their bounding box, for nearest-point queries within
+/// a radius. Holds a reference to the points: they must outlive the grid and stay in place.
 class PointGrid
 {
 public:
@@ -32,47 +31,45 @@ public:
   int NearestAny(const Eigen::Vector3d& x) const;
 
 private:
-  Eigen::Vector3i CellOf(const Eigen::Vector3d& x) const
-  {
-    return (x / this->Cell).array().floor().cast<int>();
-  }
-  static std::int64_t Key(const Eigen::Vector3i& c)
-  {
-    return (std::int64_t(c[0]) + (1 << 20)) + ((std::int64_t(c[1]) + (1 << 20)) << 21) +
-      ((std::int64_t(c[2]) + (1 << 20)) << 42);
-  }
-  // The entries of one cell: a range of the sorted (key, index) list.
-  std::pair<const std::pair<std::int64_t, int>*, const std::pair<std::int64_t, int>*> CellEntries(
-    const Eigen::Vector3i& c) const;
+  // The cell of x along each axis, clamped to the grid (a point outside lies in no cell, so a
+  // clamped range of cells still holds every point within reach).
+  Eigen::Vector3i CellOf(const Eigen::Vector3d& x) const;
 
   const std::vector<Eigen::Vector3d>& Points;
   double Cell;
-  std::vector<std::pair<std::int64_t, int>> Entries;
+  Eigen::Vector3d Origin = Eigen::Vector3d::Zero();
+  Eigen::Vector3i Size = Eigen::Vector3i::Zero();
+  std::vector<int> CellStart; // points of cell c: Sorted[CellStart[c] .. CellStart[c + 1])
+  std::vector<int> Sorted;
 };
 
 template <typename Accept>
 int PointGrid::Nearest(const Eigen::Vector3d& x, double radius, const Accept& accept) const
 {
+  if (this->Sorted.empty())
+  {
+    return -1;
+  }
   const Eigen::Vector3i lo = this->CellOf(x - Eigen::Vector3d::Constant(radius));
   const Eigen::Vector3i hi = this->CellOf(x + Eigen::Vector3d::Constant(radius));
   int best = -1;
   double bestDistance = radius * radius;
   for (int k = lo[2]; k <= hi[2]; ++k)
     for (int j = lo[1]; j <= hi[1]; ++j)
-      for (int i = lo[0]; i <= hi[0]; ++i)
+    {
+      const std::int64_t row = (std::int64_t(k) * this->Size[1] + j) * this->Size[0];
+      for (int s = this->CellStart[row + lo[0]]; s < this->CellStart[row + hi[0] + 1]; ++s)
       {
-        const auto range = this->CellEntries(Eigen::Vector3i(i, j, k));
-        for (auto it = range.first; it != range.second; ++it)
+        const int index = this->Sorted[s];
+        const double distance = (this->Points[index] - x).squaredNorm();
+        if ((distance < bestDistance || (distance == bestDistance && (best < 0 || index < best))) &&
+          accept(index))
         {
-          const double distance = (this->Points[it->second] - x).squaredNorm();
-          if ((distance < bestDistance || (distance == bestDistance && (best < 0 || it->second < best))) &&
-            accept(it->second))
-          {
-            best = it->second;
-            bestDistance = distance;
-          }
+          best = index;
+          bestDistance = distance;
         }
       }
+    }
   return best;
 }
 } // namespace cbc3d

@@ -35,4 +35,34 @@ std::array<double, 6> DihedralAngles(const Vec3& p0, const Vec3& p1, const Vec3&
   }
   return angles;
 }
+
+bool DihedralAnglesWithin(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3,
+  double minimum)
+{
+  // The dihedral angle at the edge shared by two faces is the angle between their normals or
+  // its supplement: |cos| <= cos(minimum) holds for both bounds at once.
+  const std::array<Vec3, 4> normals = { (p2 - p1).cross(p3 - p1), (p3 - p0).cross(p2 - p0),
+    (p1 - p0).cross(p3 - p0), (p2 - p0).cross(p1 - p0) };
+  std::array<double, 4> lengths;
+  for (int f = 0; f < 4; ++f)
+  {
+    lengths[f] = normals[f].norm();
+    if (!(lengths[f] > 0.0))
+    {
+      return false;
+    }
+  }
+  const double limit = std::cos(minimum);
+  for (int f = 0; f < 4; ++f)
+  {
+    for (int g = f + 1; g < 4; ++g)
+    {
+      if (std::abs(normals[f].dot(normals[g])) > limit * lengths[f] * lengths[g])
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
 } // namespace cbc3d

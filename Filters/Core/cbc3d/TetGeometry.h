@@ -16,6 +16,12 @@ double SignedVolume(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& 
 std::array<double, 6> DihedralAngles(const Vec3& p0, const Vec3& p1, const Vec3& p2,
   const Vec3& p3);
 
+/// Whether every dihedral angle lies within [minimum, pi - minimum] (radians): the same test as
+/// DihedralAngles against the bound, by the cosines between face normals, which costs no
+/// trigonometry. A tet with a degenerate face fails.
+bool DihedralAnglesWithin(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3,
+  double minimum);
+
 constexpr double RadiansToDegrees = 57.295779513082320876798154814105;
 } // namespace cbc3d
 

@@ -95,6 +95,7 @@ struct IndexSpaceTet
 {
   Eigen::Vector3d Base;
   Eigen::Matrix3d ToBarycentric;
+  Eigen::Vector3d Growth; // how the barycentric coordinates change along TieBreak
   Eigen::Vector3d Lower, Upper;
 
   explicit IndexSpaceTet(const std::array<Eigen::Vector3d, 4>& index)
@@ -103,6 +104,7 @@ struct IndexSpaceTet
     Eigen::Matrix3d edges;
     edges << index[1] - index[0], index[2] - index[0], index[3] - index[0];
     this->ToBarycentric = edges.inverse();
+    this->Growth = this->ToBarycentric * TieBreak;
     this->Lower = this->Upper = index[0];
     for (int v = 1; v < 4; ++v)
     {
@@ -111,10 +113,15 @@ struct IndexSpaceTet
     }
   }
 
-  bool Contains(const Eigen::Vector3d& point) const
+  Eigen::Vector3d Barycentric(const Eigen::Vector3d& point) const
+  {
+    return this->ToBarycentric * (point - this->Base);
+  }
+
+  /// Whether the point with barycentric coordinates b (of corners 1-3) is inside.
+  bool Contains(const Eigen::Vector3d& b) const
   {
     constexpr double tolerance = 1e-9;
-    const Eigen::Vector3d b = this->ToBarycentric * (point - this->Base);
     const double b0 = 1.0 - b.sum();
     if (b.minCoeff() < -tolerance || b0 < -tolerance)
     {
@@ -122,15 +129,14 @@ struct IndexSpaceTet
     }
     // On a face (a coordinate near zero): inside only if moving along TieBreak enters the tet,
     // that is, if that coordinate grows along it.
-    const Eigen::Vector3d growth = this->ToBarycentric * TieBreak;
     for (int i = 0; i < 3; ++i)
     {
-      if (b[i] <= tolerance && growth[i] <= 0.0)
+      if (b[i] <= tolerance && this->Growth[i] <= 0.0)
       {
         return false;
       }
     }
-    return !(b0 <= tolerance && -growth.sum() <= 0.0);
+    return !(b0 <= tolerance && -this->Growth.sum() <= 0.0);
   }
 };
 
@@ -157,10 +163,14 @@ std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int s
     for (std::int64_t j = first[1]; j <= last[1]; ++j)
     {
       point[1] = offset + j * step;
-      for (std::int64_t i = first[0]; i <= last[0]; ++i)
+      point[0] = offset + first[0] * step;
+      // Along a row the barycentric coordinates change by a constant step.
+      Eigen::Vector3d b = tet.Barycentric(point);
+      const Eigen::Vector3d rowStep = tet.ToBarycentric.col(0) * step;
+      for (std::int64_t i = first[0]; i <= last[0]; ++i, b += rowStep)
       {
         point[0] = offset + i * step;
-        if (!tet.Contains(point))
+        if (!tet.Contains(b))
         {
           continue;
         }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 using cbc3d::Vec3;
 
@@ -66,4 +67,33 @@ TEST(TetGeometry, SliverAngleAtEdgeZeroTwoIsThreeDegrees)
   const auto angles = cbc3d::DihedralAngles(p0, p1, p2, p3);
   EXPECT_NEAR(Degrees(angles[2]), 3.0, 1e-9); // edge {2,0}
   EXPECT_NEAR(Degrees(*std::min_element(angles.begin(), angles.end())), 3.0, 1e-9);
+}
+
+TEST(TetGeometry, AnglesWithinAgreesWithTheAngles)
+{
+  // A regular tet: every dihedral angle is arccos(1/3) = 70.53 degrees.
+  const double s = std::sqrt(8.0 / 9.0), r = std::sqrt(2.0 / 9.0), h = std::sqrt(2.0 / 3.0);
+  const Eigen::Vector3d a(s, 0, -1.0 / 3), b(-r, h, -1.0 / 3), c(-r, -h, -1.0 / 3), d(0, 0, 1);
+  const double regular = std::acos(1.0 / 3.0);
+  EXPECT_TRUE(cbc3d::DihedralAnglesWithin(a, b, c, d, regular - 1e-6));
+  EXPECT_FALSE(cbc3d::DihedralAnglesWithin(a, b, c, d, regular + 1e-6));
+  EXPECT_FALSE(cbc3d::DihedralAnglesWithin(a, b, c, a, 0.1)); // degenerate
+  // Random tets, each bound: the same verdict as the smallest and largest angle.
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+  for (int n = 0; n < 2000; ++n)
+  {
+    std::array<Eigen::Vector3d, 4> p;
+    for (auto& q : p)
+      q = Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
+    const auto angles = cbc3d::DihedralAngles(p[0], p[1], p[2], p[3]);
+    const double smallest = *std::min_element(angles.begin(), angles.end());
+    const double largest = *std::max_element(angles.begin(), angles.end());
+    for (const double bound : { 0.1, 0.35, 0.6 })
+    {
+      const bool within = smallest >= bound && largest <= M_PI - bound;
+      if (std::abs(smallest - bound) > 1e-9 && std::abs(M_PI - largest - bound) > 1e-9)
+        EXPECT_EQ(cbc3d::DihedralAnglesWithin(p[0], p[1], p[2], p[3], bound), within);
+    }
+  }
 }
