@@ -15,7 +15,8 @@
  * Field data (vtkCBC3DDeformation): `DeformationIterations`, `DeformationStopReason`,
  * `DeformationSources`, `DeformationTargets`.
  *
- * Field data (vtkCBC3DRefinement): `RefinementPasses`, `RefinementStopReason`, and per tissue
+ * Field data (vtkCBC3DRefinement): `RefinementPasses`, `RefinementStopReason`,
+ * `RefinementBoundaryDistance`, `RefinementBoundaryGap`, and per tissue
  * `FidelityLabel`, `FidelityF1`, `FidelityF2`, `FidelityComponents`, `FidelityComponentsInMesh`.
  *
  * Field data (vtkCBC3DMeshQuality; its class comment says what each holds): over the whole
@@ -39,6 +40,8 @@ constexpr const char* LatticeEdgeLength = "LatticeEdgeLength";
 constexpr const char* RefinementLevel = "RefinementLevel";
 constexpr const char* RefinementPasses = "RefinementPasses";
 constexpr const char* RefinementStopReason = "RefinementStopReason";
+constexpr const char* RefinementBoundaryDistance = "RefinementBoundaryDistance";
+constexpr const char* RefinementBoundaryGap = "RefinementBoundaryGap";
 constexpr const char* Displacement = "Displacement";
 constexpr const char* DeformationIterations = "DeformationIterations";
 constexpr const char* DeformationStopReason = "DeformationStopReason";

@@ -66,6 +66,7 @@ int vtkCBC3DMesher::RequestData(
   vtkNew<vtkCBC3DMeshQuality> quality;
   lattice->SetEdgeLength(this->EdgeLength);
   refinement->SetFidelity(this->Fidelity);
+  refinement->SetBoundaryDistance(this->BoundaryDistance);
   deformation->SetIterations(this->Iterations);
   deformation->SetPattern(this->Pattern);
   vtkInformation* arrayRequest = this->GetInputArrayInformation(0);
@@ -155,6 +156,7 @@ void vtkCBC3DMesher::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "EdgeLength: " << this->EdgeLength << " mm" << (this->EdgeLength == 0 ? " (auto)" : "") << "\n";
   os << indent << "Fidelity: " << this->Fidelity << "\n";
+  os << indent << "BoundaryDistance: " << this->BoundaryDistance << " mm\n";
   os << indent << "Iterations: " << this->Iterations << "\n";
   os << indent << "Pattern: " << this->Pattern << "\n";
 }

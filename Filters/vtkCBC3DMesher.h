@@ -42,6 +42,15 @@ public:
 
   ///@{
   /**
+   * Refinement's bound on the distance from boundary voxels to the surface's vertices, in mm
+   * (default 0: 3/8 of the lattice edge; negative: none; see vtkCBC3DRefinement).
+   */
+  vtkSetMacro(BoundaryDistance, double);
+  vtkGetMacro(BoundaryDistance, double);
+  ///@}
+
+  ///@{
+  /**
    * Deformation iterations (default 5; 0 skips deformation) and target pattern (0 Vertex,
    * 1 Edge (default), 2 Face, 3 None; see vtkCBC3DDeformation).
    */
@@ -60,6 +69,7 @@ protected:
 
   double EdgeLength = 0.0;
   double Fidelity = 0.95;
+  double BoundaryDistance = 0.0;
   int Iterations = 5;
   int Pattern = 1;
 

@@ -41,6 +41,7 @@ int vtkCBC3DRefinement::RequestData(
   params.Fidelity = this->Fidelity;
   params.MinimumEdgeLength = this->MinimumEdgeLength;
   params.MinimumComponentVoxels = this->MinimumComponentVoxels;
+  params.BoundaryDistance = this->BoundaryDistance;
   params.NumberOfThreads = this->NumberOfThreads;
   cbc3d::TetMesh mesh;
   cbc3d::RefinementResult result;
@@ -69,6 +70,13 @@ int vtkCBC3DRefinement::RequestData(
   reason->SetName(names::RefinementStopReason);
   reason->InsertNextValue(result.StopReason);
   fields->AddArray(reason);
+  vtkNew<vtkDoubleArray> boundaryDistance, boundaryGap;
+  boundaryDistance->SetName(names::RefinementBoundaryDistance);
+  boundaryDistance->InsertNextValue(result.BoundaryDistance);
+  fields->AddArray(boundaryDistance);
+  boundaryGap->SetName(names::RefinementBoundaryGap);
+  boundaryGap->InsertNextValue(result.LargestBoundaryGap);
+  fields->AddArray(boundaryGap);
   vtkNew<vtkIntArray> label;
   label->SetName(names::FidelityLabel);
   vtkNew<vtkDoubleArray> f1, f2;
@@ -101,4 +109,7 @@ void vtkCBC3DRefinement::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MinimumEdgeLength: " << this->MinimumEdgeLength << " mm"
      << (this->MinimumEdgeLength == 0 ? " (the voxel size)" : "") << "\n";
   os << indent << "MinimumComponentVoxels: " << this->MinimumComponentVoxels << "\n";
+  os << indent << "BoundaryDistance: " << this->BoundaryDistance << " mm"
+     << (this->BoundaryDistance == 0 ? " (3/8 of the longest edge)" : this->BoundaryDistance < 0 ? " (none)" : "")
+     << "\n";
 }

@@ -10,16 +10,20 @@
  * holds none is sampled on a finer sub-grid), measures for each tissue F1 = |S1 n S2| / |S1|
  * and F2 = |S1 n S2| / |S2| (S1: voxels in the tissue's tets, S2: the tissue's voxels), and
  * splits red (1:8, along the shortest inner diagonal, so BCC tets give half-size BCC tets) the
- * tets that cross the boundary of a tissue whose F1 or F2 is below Fidelity. Green splits (one
- * edge: 2 tets, two opposite edges: 4, three edges of a face: 4) close the mesh; any other
- * pattern is split red, and a green tet is never split (its red parent is). Refinement ends
- * when every tissue reaches Fidelity, or no tet may be split without making edges shorter than
- * MinimumEdgeLength. Every 6-connected tissue component of at least MinimumComponentVoxels
+ * tets that cross the boundary of a tissue whose F1 or F2 is below Fidelity. It also splits where
+ * the surface would leave the image boundary far from its vertices, the paper's Hausdorff
+ * measure (BoundaryDistance). Green splits (one edge: 2 tets, two opposite edges: 4, three edges
+ * of a face: 4; two edges of a face get the third split too) close the mesh; any other pattern
+ * is split red, and a green tet is never split (its red parent is). Refinement ends when every
+ * tissue reaches Fidelity and BoundaryDistance, or no tet may be split without making edges
+ * shorter than MinimumEdgeLength. Every 6-connected tissue component of at least MinimumComponentVoxels
  * voxels keeps at least one tet of its tissue. Tets labelled background are dropped.
  *
  * Output: the refined mesh, conforming, every tet positively oriented; cell data `Label`
  * (vtkIntArray) and `RefinementLevel` (vtkUnsignedCharArray: 0 for lattice tets, +1 per red
  * split); field data `RefinementPasses` (vtkIntArray), `RefinementStopReason` (vtkStringArray),
+ * `RefinementBoundaryDistance` (the bound used, mm; 0 when none) and `RefinementBoundaryGap`
+ * (the farthest boundary voxel from the predicted surface, mm) (vtkDoubleArray),
  * and per tissue in ascending label order `FidelityLabel` (vtkIntArray), `FidelityF1`,
  * `FidelityF2` (vtkDoubleArray), `FidelityComponents`, `FidelityComponentsInMesh`
  * (vtkIdTypeArray).
@@ -59,6 +63,19 @@ public:
 
   ///@{
   /**
+   * Every boundary voxel of a tissue should end within this distance (mm) of a vertex of the
+   * tissue's surface: where the surface after deformation (predicted: each surface vertex moved
+   * to its nearest boundary voxel) would leave voxels farther, the longest edge of the nearest
+   * surface face is split, and tets with a vertex that cannot reach the boundary are split red.
+   * 0 (the default) = 3/8 of the input mesh's longest edge (3 mm for an 8 mm lattice);
+   * negative = no such bound (voxel fidelity alone, as in the paper).
+   */
+  vtkSetMacro(BoundaryDistance, double);
+  vtkGetMacro(BoundaryDistance, double);
+  ///@}
+
+  ///@{
+  /**
    * Tissue components (6-connected) of at least this many voxels always keep tets of their
    * tissue (default 8).
    */
@@ -75,6 +92,7 @@ protected:
 
   double Fidelity = 0.95;
   double MinimumEdgeLength = 0.0;
+  double BoundaryDistance = 0.0;
   int MinimumComponentVoxels = 8;
 
 private:

@@ -30,7 +30,7 @@ bool ParseInt(const std::string& text, int& value)
 
 std::string UsageText()
 {
-  return R"(usage: cbc3d INPUT -o OUTPUT [--bcc-size MM] [--fidelity F]
+  return R"(usage: cbc3d INPUT -o OUTPUT [--bcc-size MM] [--fidelity F] [--boundary-distance MM]
              [--pattern vertex|edge|face|none] [--iterations N] [--background L]...
              [--threads N] [--report REPORT.json] [--quiet]
 
@@ -43,6 +43,10 @@ Mesh a 3-D label image into a conforming multi-tissue tetrahedral mesh (CBC3D).
   --bcc-size MM       lattice cube edge in mm (default: 8 x the finest voxel spacing)
   --fidelity F        voxel fidelity target in [0, 1] for refinement (default 0.95;
                       0 = no refinement)
+  --boundary-distance MM
+                      refinement adds surface vertices until every boundary voxel
+                      would end within MM of one after deformation (the Hausdorff
+                      measure); default 0 = 3/8 of the lattice size; negative = none
   --pattern P         target-point pattern for deformation: vertex, edge, face, none
                       (default edge)
   --iterations N      deformation iterations (default 5; 0 = no deformation)
@@ -136,6 +140,16 @@ bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::
       if (!ParseDouble(text, options.Fidelity) || options.Fidelity < 0.0 || options.Fidelity > 1.0)
       {
         error = "--fidelity must be a number from 0 to 1, not '" + text + "'";
+        return false;
+      }
+    }
+    else if (arg == "--boundary-distance")
+    {
+      if (!value(text))
+        return false;
+      if (!ParseDouble(text, options.BoundaryDistance))
+      {
+        error = "--boundary-distance must be a number of millimetres, not '" + text + "'";
         return false;
       }
     }

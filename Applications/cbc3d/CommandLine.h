@@ -11,6 +11,7 @@ struct CommandLineOptions
   std::string Output;
   double BCCSize = 0.0;    // mm; 0 = 8 x the finest voxel spacing
   double Fidelity = 0.95;  // 0 = no refinement
+  double BoundaryDistance = 0.0; // mm; 0 = 3/8 of the lattice size, negative = none
   std::string Pattern = "edge";
   int Iterations = 5;      // 0 = no deformation
   std::vector<int> BackgroundLabels = { 0 };

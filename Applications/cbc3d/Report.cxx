@@ -103,6 +103,8 @@ bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
   if (vtkDataArray* fidelityLabels = Field(mesh, names::FidelityLabel))
   {
     read(names::RefinementPasses, 0, report.RefinementPasses);
+    read(names::RefinementBoundaryDistance, 0, report.RefinementBoundaryDistance);
+    read(names::RefinementBoundaryGap, 0, report.RefinementBoundaryGap);
     if (auto* reason = vtkStringArray::SafeDownCast(
           mesh->GetFieldData()->GetAbstractArray(names::RefinementStopReason)))
     {
@@ -150,8 +152,13 @@ std::string FormatSummary(const RunReport& report)
   row("all", report.Overall);
   if (report.RefinementPasses >= 0)
   {
-    out << "  refinement: " << report.RefinementPasses << " passes, " << report.RefinementStopReason
-        << "\n  tissue  F1      F2      components (kept / in image)\n";
+    out << "  refinement: " << report.RefinementPasses << " passes, " << report.RefinementStopReason;
+    if (report.RefinementBoundaryDistance > 0.0)
+    {
+      out << " (boundary distance " << Fixed(report.RefinementBoundaryDistance, 2)
+          << " mm, predicted farthest voxel " << Fixed(report.RefinementBoundaryGap, 2) << " mm)";
+    }
+    out << "\n  tissue  F1      F2      components (kept / in image)\n";
     for (const auto& [label, f] : report.Tissues)
     {
       char line[160];
@@ -176,6 +183,7 @@ std::string FormatJson(const RunReport& report)
   doc["input"] = o.Input;
   doc["output"] = o.Output;
   doc["parameters"] = { { "bcc_size_mm", report.BCCSizeUsed }, { "fidelity", o.Fidelity },
+    { "boundary_distance_mm", o.BoundaryDistance },
     { "pattern", o.Pattern }, { "iterations", o.Iterations },
     { "background", o.BackgroundLabels }, { "threads", o.Threads } };
   AddFigures(doc, report.Overall);
@@ -189,7 +197,9 @@ std::string FormatJson(const RunReport& report)
   if (report.RefinementPasses >= 0)
   {
     doc["refinement"] = { { "passes", report.RefinementPasses },
-      { "stop_reason", report.RefinementStopReason } };
+      { "stop_reason", report.RefinementStopReason },
+      { "boundary_distance_mm", report.RefinementBoundaryDistance },
+      { "predicted_boundary_gap_mm", report.RefinementBoundaryGap } };
   }
   nlohmann::json tissues = nlohmann::json::object();
   for (const auto& [label, figures] : report.Tissues)

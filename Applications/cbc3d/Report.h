@@ -44,6 +44,8 @@ struct RunReport
   std::vector<std::pair<std::string, double>> Seconds; // per stage, in order
   int RefinementPasses = -1;                           // -1: no refinement
   std::string RefinementStopReason;
+  double RefinementBoundaryDistance = 0.0; // the bound used (mm); 0 when none
+  double RefinementBoundaryGap = 0.0;      // farthest boundary voxel from the predicted surface
 };
 
 /// Takes the figures from a mesh that went through vtkCBC3DMeshQuality (its field data), so

@@ -176,6 +176,7 @@ int main(int argc, char* argv[])
     refinement->SetInputConnection(lattice->GetOutputPort());
     refinement->SetImageData(image);
     refinement->SetFidelity(options.Fidelity);
+    refinement->SetBoundaryDistance(options.BoundaryDistance);
     SetBackground(refinement, options);
     refinement->SetNumberOfThreads(options.Threads);
     if (!RunStage(refinement, "refinement", showProgress, report, error))

@@ -77,6 +77,7 @@ with tempfile.TemporaryDirectory() as work:
         ("text_bcc_size", [PHANTOM, "-o", "OUT", "--bcc-size", "big"], "--bcc-size"),
         ("tiny_bcc_size", [PHANTOM, "-o", "OUT", "--bcc-size", "0.00001"], "memory"),
         ("fidelity_range", [PHANTOM, "-o", "OUT", "--fidelity", "1.5"], "--fidelity"),
+        ("boundary_distance_text", [PHANTOM, "-o", "OUT", "--boundary-distance", "far"], "--boundary-distance"),
         ("bad_pattern", [PHANTOM, "-o", "OUT", "--pattern", "diagonal"], "--pattern"),
         ("negative_iterations", [PHANTOM, "-o", "OUT", "--iterations", "-1"], "--iterations"),
         ("bad_threads", [PHANTOM, "-o", "OUT", "--threads", "two"], "--threads"),

@@ -73,6 +73,15 @@ with tempfile.TemporaryDirectory() as work:
     check(default["inverted_tetrahedra"] == 0 and default["min_dihedral_deg"] >= 10 - 1e-9,
           "default mesh: no inverted tet, angles >= 10 degrees")
     check(all("fidelity_f1" in t for t in default["tissues"].values()), "default report has F1/F2 per tissue")
+    check(abs(default["refinement"]["boundary_distance_mm"] - 3.0) < 1e-9,
+          "default boundary distance is 3/8 of the 8 mm lattice: %r" % default["refinement"])
+    unbound_report = os.path.join(work, "unbound.json")
+    result = run(PHANTOM, "-o", os.path.join(work, "unbound.vtu"), "--boundary-distance", "-1",
+                 "--report", unbound_report)
+    unbound = json.load(open(unbound_report))
+    check(result.returncode == 0 and unbound["refinement"]["boundary_distance_mm"] == 0
+          and unbound["tetrahedra"] <= default["tetrahedra"],
+          "--boundary-distance -1 turns the bound off (%d tets, bounded %d)" % (unbound["tetrahedra"], default["tetrahedra"]))
 
     result = run("--help")
     check(result.returncode == 0 and "--bcc-size" in result.stdout, "--help")
