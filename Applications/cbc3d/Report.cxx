@@ -119,6 +119,17 @@ bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
       read(names::FidelityComponentsInMesh, i, tissue.ComponentsInMesh);
     }
   }
+  if (Field(mesh, names::DeformationIterations))
+  {
+    read(names::DeformationIterations, 0, report.DeformationIterations);
+    read(names::DeformationSources, 0, report.DeformationSources);
+    read(names::DeformationTargets, 0, report.DeformationTargets);
+    if (auto* reason = vtkStringArray::SafeDownCast(
+          mesh->GetFieldData()->GetAbstractArray(names::DeformationStopReason)))
+    {
+      report.DeformationStopReason = reason->GetValue(0);
+    }
+  }
   // The mesh's one-sided distances are the largest over tissues, like its Hausdorff distance.
   all.MeshToImage = all.ImageToMesh = report.Tissues.empty() ? all.Hausdorff : 0.0;
   for (const auto& entry : report.Tissues)
@@ -200,6 +211,12 @@ std::string FormatJson(const RunReport& report)
       { "stop_reason", report.RefinementStopReason },
       { "boundary_distance_mm", report.RefinementBoundaryDistance },
       { "predicted_boundary_gap_mm", report.RefinementBoundaryGap } };
+  }
+  if (report.DeformationIterations >= 0)
+  {
+    doc["deformation"] = { { "iterations", report.DeformationIterations },
+      { "stop_reason", report.DeformationStopReason }, { "sources", report.DeformationSources },
+      { "targets", report.DeformationTargets } };
   }
   nlohmann::json tissues = nlohmann::json::object();
   for (const auto& [label, figures] : report.Tissues)

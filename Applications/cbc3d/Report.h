@@ -46,6 +46,10 @@ struct RunReport
   std::string RefinementStopReason;
   double RefinementBoundaryDistance = 0.0; // the bound used (mm); 0 when none
   double RefinementBoundaryGap = 0.0;      // farthest boundary voxel from the predicted surface
+  int DeformationIterations = -1;          // -1: no deformation
+  std::string DeformationStopReason;
+  long long DeformationSources = 0;        // surface and interface vertices
+  long long DeformationTargets = 0;        // boundary voxels kept by the pattern
 };
 
 /// Takes the figures from a mesh that went through vtkCBC3DMeshQuality (its field data), so

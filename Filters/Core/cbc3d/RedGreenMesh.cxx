@@ -94,7 +94,12 @@ std::uint8_t RedGreenMesh::SplitMask(const Tet& tet) const
 
 bool RedGreenMesh::HasClosure(const Tet& tet) const
 {
-  const std::vector<LocalTet>* closure = GreenClosure(this->SplitMask(tet));
+  const std::uint8_t mask = this->SplitMask(tet);
+  if (mask == 0)
+  {
+    return true; // the tet itself, none of whose edges is split: most leaves
+  }
+  const std::vector<LocalTet>* closure = GreenClosure(mask);
   if (!closure)
   {
     return false;
@@ -207,11 +212,13 @@ bool RedGreenMesh::BuildConforming(std::vector<Tet>& tets, std::vector<std::int6
     {
       local[v] = tet[v];
     }
+    std::uint8_t mask = 0;
     for (int e = 0; e < 6; ++e)
     {
       local[4 + e] = this->FindMidpoint(tet[TetEdges[e][0]], tet[TetEdges[e][1]]);
+      mask |= local[4 + e] >= 0 ? static_cast<std::uint8_t>(1u << e) : 0;
     }
-    for (const LocalTet& child : *GreenClosure(this->SplitMask(tet)))
+    for (const LocalTet& child : *GreenClosure(mask))
     {
       tets.push_back(Tet{ local[child[0]], local[child[1]], local[child[2]], local[child[3]] });
       source.push_back(static_cast<std::int64_t>(red));
