@@ -22,6 +22,13 @@ vtkDataArray* Field(vtkUnstructuredGrid* mesh, const char* name)
   return mesh->GetFieldData()->GetArray(name);
 }
 
+// The first value of a string field array, "" when there is none.
+std::string FieldText(vtkUnstructuredGrid* mesh, const char* name)
+{
+  auto* text = vtkStringArray::SafeDownCast(mesh->GetFieldData()->GetAbstractArray(name));
+  return text && text->GetNumberOfValues() > 0 ? text->GetValue(0) : std::string();
+}
+
 std::string Fixed(double value, int digits)
 {
   char text[64];
@@ -105,11 +112,7 @@ bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
     read(names::RefinementPasses, 0, report.RefinementPasses);
     read(names::RefinementBoundaryDistance, 0, report.RefinementBoundaryDistance);
     read(names::RefinementBoundaryGap, 0, report.RefinementBoundaryGap);
-    if (auto* reason = vtkStringArray::SafeDownCast(
-          mesh->GetFieldData()->GetAbstractArray(names::RefinementStopReason)))
-    {
-      report.RefinementStopReason = reason->GetValue(0);
-    }
+    report.RefinementStopReason = FieldText(mesh, names::RefinementStopReason);
     for (vtkIdType i = 0; i < fidelityLabels->GetNumberOfTuples(); ++i)
     {
       TissueFigures& tissue = report.Tissues[static_cast<int>(fidelityLabels->GetTuple1(i))];
@@ -124,11 +127,7 @@ bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
     read(names::DeformationIterations, 0, report.DeformationIterations);
     read(names::DeformationSources, 0, report.DeformationSources);
     read(names::DeformationTargets, 0, report.DeformationTargets);
-    if (auto* reason = vtkStringArray::SafeDownCast(
-          mesh->GetFieldData()->GetAbstractArray(names::DeformationStopReason)))
-    {
-      report.DeformationStopReason = reason->GetValue(0);
-    }
+    report.DeformationStopReason = FieldText(mesh, names::DeformationStopReason);
   }
   // The mesh's one-sided distances are the largest over tissues, like its Hausdorff distance.
   all.MeshToImage = all.ImageToMesh = report.Tissues.empty() ? all.Hausdorff : 0.0;

@@ -7,34 +7,21 @@
 #include "cbc3d/SurfacePoints.h"
 #include "cbc3d/TissueComponents.h"
 
+#include "TestImages.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 namespace
 {
-// A ball of radius 11 mm in 1 mm voxels.
-cbc3d::LabelImage Ball()
-{
-  cbc3d::LabelImage image;
-  image.Dimensions = { 32, 32, 32 };
-  image.Labels.assign(32 * 32 * 32, 0);
-  for (int k = 0; k < 32; ++k)
-    for (int j = 0; j < 32; ++j)
-      for (int i = 0; i < 32; ++i)
-        if ((Eigen::Vector3d(i, j, k) - Eigen::Vector3d(15.5, 15.5, 15.5)).norm() <= 11.0)
-          image.Labels[image.VoxelIndex(i, j, k)] = 1;
-  return image;
-}
 
 // Lattice, refinement with the given bound, deformation; returns the farthest boundary voxel
 // from the surface vertices (brute force), and the tet count.
 std::pair<double, std::size_t> FarthestBoundaryVoxel(const cbc3d::LabelImage& image, double bound)
 {
-  cbc3d::LatticeParams latticeParams;
-  latticeParams.EdgeLength = 8.0;
-  cbc3d::TetMesh lattice, refined, deformed;
-  EXPECT_TRUE(cbc3d::BuildBCCLattice(image, latticeParams, lattice).IsOk());
+  const cbc3d::TetMesh lattice = Lattice(image, 8.0);
+  cbc3d::TetMesh refined, deformed;
   cbc3d::RefinementParams refinement;
   refinement.Fidelity = 0.5; // met at the lattice: only the boundary distance refines
   refinement.BoundaryDistance = bound;
@@ -59,7 +46,7 @@ std::pair<double, std::size_t> FarthestBoundaryVoxel(const cbc3d::LabelImage& im
 TEST(BoundaryCoverage, BoundsTheDistanceFromBoundaryVoxelsToTheDeformedSurface)
 {
   // The surface is predicted, not deformed, during refinement: allow half a voxel diagonal.
-  const cbc3d::LabelImage image = Ball();
+  const cbc3d::LabelImage image = BallImage(32, 11.0); // radius 11 mm in 1 mm voxels
   const double bound = 3.0, slack = 0.5 * std::sqrt(3.0);
   const auto on = FarthestBoundaryVoxel(image, 0.0); // automatic: 3/8 of the 8 mm lattice
   EXPECT_LE(on.first, bound + slack);

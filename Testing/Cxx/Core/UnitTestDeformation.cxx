@@ -38,15 +38,7 @@ Eigen::VectorXd Field(const cbc3d::TetMesh& mesh, const std::function<Eigen::Vec
 
 cbc3d::LabelImage Ball()
 {
-  cbc3d::LabelImage image;
-  image.Dimensions = { 30, 30, 30 };
-  image.Labels.assign(30 * 30 * 30, 0);
-  for (int k = 0; k < 30; ++k)
-    for (int j = 0; j < 30; ++j)
-      for (int i = 0; i < 30; ++i)
-        if ((Eigen::Vector3d(i, j, k) - Eigen::Vector3d(14.5, 14.5, 14.5)).norm() <= 9.0)
-          image.Labels[image.VoxelIndex(i, j, k)] = 1;
-  return image;
+  return BallImage(30, 9.0);
 }
 
 // Largest and mean distance between the ball's surface vertices and boundary voxel centres,
