@@ -7,6 +7,7 @@
 #include "cbc3d/TetGeometry.h"
 #include "cbc3d/TetTopology.h"
 
+#include <Eigen/Geometry>
 #include <Eigen/IterativeLinearSolvers>
 
 #include <algorithm>
@@ -225,6 +226,30 @@ public:
     return held;
   }
 
+  /// Takes these positions' distances as the new limits unless some tissue's would grow;
+  /// returns whether it took them. Asks `keepGoing` before each tissue (false when stopped).
+  bool AcceptIfNoneGrows(const std::vector<Eigen::Vector3d>& points, const std::function<bool()>& keepGoing)
+  {
+    std::vector<double> measured;
+    for (const Tissue& tissue : this->Tissues)
+    {
+      if (!keepGoing())
+      {
+        return false;
+      }
+      measured.push_back(this->Measure(tissue, points));
+      if (measured.back() > tissue.Hausdorff * (1.0 + 1e-12))
+      {
+        return false;
+      }
+    }
+    for (std::size_t t = 0; t < measured.size(); ++t)
+    {
+      this->Tissues[t].Hausdorff = measured[t];
+    }
+    return true;
+  }
+
   /// Records the accepted positions' distances as the new limits. Asks `keepGoing` before
   /// each tissue; when it says stop, returns at once.
   void Accept(const std::vector<Eigen::Vector3d>& points, const std::function<bool()>& keepGoing)
@@ -392,6 +417,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   cg.setMaxIterations(50); // per call: the solve runs in chunks so that a stop is seen soon
   std::vector<Eigen::Vector3d>& x = out.Points;
   Eigen::VectorXd du = Eigen::VectorXd::Zero(stiffness.rows());
+  Eigen::Isometry3d placement = Eigen::Isometry3d::Identity(); // the rigid moves so far
   for (int iteration = 0; iteration < params.Iterations; ++iteration)
   {
     const double done = 0.1 + 0.9 * double(iteration) / params.Iterations;
@@ -425,6 +451,61 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
         ++goalCount[nearestSource[t]];
       }
     }
+    std::vector<Eigen::Vector3d> goals(sourceCount);
+    std::vector<char> matched(sourceCount, 0);
+#pragma omp parallel for schedule(dynamic, 64) num_threads(ThreadCount(threads))
+    for (std::int64_t s = 0; s < sourceCount; ++s)
+    {
+      const PointId p = sources.Points[s];
+      const auto& sets = accepted[s];
+      const int match = targetGrid.Nearest(x[p], 2.0 * sources.LocalSize[p],
+        [&](int t) { return std::find(sets.begin(), sets.end(), targetSet[t]) != sets.end(); });
+      if (match < 0 && goalCount[s] == 0)
+      {
+        continue; // no target near: the vertex keeps its place
+      }
+      const Eigen::Vector3d averaged = goalCount[s] > 0 ? Eigen::Vector3d(goalSum[s] / goalCount[s]) : Eigen::Vector3d::Zero();
+      goals[s] = match < 0 ? averaged
+        : goalCount[s] > 0 ? Eigen::Vector3d(0.5 * (averaged + targetPoints[match]))
+                           : targetPoints[match];
+      matched[s] = 1;
+    }
+
+    // The rigid part of the match first (rotation and translation, Umeyama's least squares):
+    // it moves the mesh without straining a tet, where the elastic step alone would have its
+    // strained tets held back by the quality guard.
+    if (params.RigidAlignment)
+    {
+      const std::int64_t count = std::count(matched.begin(), matched.end(), 1);
+      Eigen::Matrix3Xd from(3, count), to(3, count);
+      for (std::int64_t s = 0, i = 0; s < sourceCount; ++s)
+      {
+        if (matched[s])
+        {
+          from.col(i) = x[sources.Points[s]];
+          to.col(i++) = goals[s];
+        }
+      }
+      if (count >= 4)
+      {
+        const Eigen::Isometry3d rigid(Eigen::umeyama(from, to, false));
+        std::vector<Eigen::Vector3d> trial(x.size());
+        for (std::size_t p = 0; p < x.size(); ++p)
+        {
+          trial[p] = rigid * x[p];
+        }
+        if (BadTets(out, trial, bound, threads).empty() && fidelity.AcceptIfNoneGrows(trial, keepGoing))
+        {
+          for (std::size_t p = 0; p < x.size(); ++p)
+          {
+            result.Displacement[p] += trial[p] - x[p];
+          }
+          x.swap(trial);
+          placement = rigid * placement;
+        }
+      }
+    }
+
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(stiffness.rows());
     Eigen::VectorXd springs = Eigen::VectorXd::Zero(stiffness.rows());
     double moved = 0.0;
@@ -433,30 +514,18 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     {
       const PointId p = sources.Points[s];
       const double size = sources.LocalSize[p];
-      const auto& sets = accepted[s];
-      const int match = targetGrid.Nearest(x[p], 2.0 * size,
-        [&](int t) { return std::find(sets.begin(), sets.end(), targetSet[t]) != sets.end(); });
-      Eigen::Vector3d goal = Eigen::Vector3d::Zero();
-      if (goalCount[s] > 0)
+      for (int c = 0; c < 3; ++c)
       {
-        goal = goalSum[s] / goalCount[s];
+        springs[3 * p + c] = params.Penalty * stiffness.coeff(3 * p + c, 3 * p + c);
       }
-      if (match >= 0)
+      if (!matched[s])
       {
-        goal = goalCount[s] > 0 ? Eigen::Vector3d(0.5 * (goal + targetPoints[match])) : targetPoints[match];
+        continue; // held in place by its spring, rather than drift with its neighbours
       }
-      if (match < 0 && goalCount[s] == 0)
-      {
-        // No target near: the vertex keeps its place rather than drift with its neighbours.
-        for (int c = 0; c < 3; ++c)
-        {
-          springs[3 * p + c] = params.Penalty * stiffness.coeff(3 * p + c, 3 * p + c);
-        }
-        continue;
-      }
-      // Never farther than one element size from where the vertex started, so vertices
-      // cannot drift along a boundary over the iterations.
-      const Eigen::Vector3d start = mesh.Points[p];
+      // Never farther than one element size from where the vertex started (after the rigid
+      // moves), so vertices cannot drift along a boundary over the iterations.
+      const Eigen::Vector3d start = placement * mesh.Points[p];
+      Eigen::Vector3d goal = goals[s];
       if ((goal - start).norm() > size)
       {
         goal = start + (goal - start) * (size / (goal - start).norm());
@@ -465,7 +534,6 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
       moved += d.norm();
       for (int c = 0; c < 3; ++c)
       {
-        springs[3 * p + c] = params.Penalty * stiffness.coeff(3 * p + c, 3 * p + c);
         rhs[3 * p + c] = springs[3 * p + c] * d[c];
       }
     }

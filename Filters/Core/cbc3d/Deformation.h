@@ -27,6 +27,10 @@ struct DeformationParams
   /// No step may leave a tet with a dihedral angle under this (degrees) or over 180 minus it:
   /// vertices of such tets keep their place for that step (inverted tets are never made).
   double MinimumDihedralAngle = 20.0;
+  /// Each iteration first moves the whole mesh by the rotation and translation that best fit
+  /// the matches (least squares), then deforms it elastically for the rest: a rigid move
+  /// strains no tet, so a mesh shifted from its image follows it whole.
+  bool RigidAlignment = true;
   /// Materials per tissue label; others get DefaultMaterial.
   std::map<std::int32_t, Material> Materials;
   Material DefaultMaterial;

@@ -1,6 +1,7 @@
 #include "cbc3d/BCCLattice.h"
 #include "cbc3d/Deformation.h"
 #include "cbc3d/LinearElasticity.h"
+#include "cbc3d/Refinement.h"
 #include "cbc3d/SurfacePoints.h"
 #include "cbc3d/TetGeometry.h"
 
@@ -164,4 +165,85 @@ TEST(Deformation, SameResultForOneAndTwoThreadsAndZeroIterationsChangesNothing)
   params.Iterations = 2;
   params.Penalty = -1;
   EXPECT_FALSE(cbc3d::DeformMesh(image, start, params, one, r1).IsOk());
+}
+
+namespace
+{
+// A ball of radius 11 mm (voxel centres within 11 mm of the image centre, 1 mm voxels) meshed
+// coarsely (8 mm lattice), refined and deformed with the defaults.
+cbc3d::TetMesh DeformedBall(const cbc3d::LabelImage& image)
+{
+  cbc3d::TetMesh refined, deformed;
+  cbc3d::RefinementResult refinedResult;
+  EXPECT_TRUE(cbc3d::RefineMesh(image, Lattice(image, 8.0), cbc3d::RefinementParams(), refined, refinedResult).IsOk());
+  cbc3d::DeformationResult result;
+  EXPECT_TRUE(cbc3d::DeformMesh(image, refined, cbc3d::DeformationParams(), deformed, result).IsOk());
+  return deformed;
+}
+
+// Volume-weighted centroid and volume.
+std::pair<Eigen::Vector3d, double> CentroidAndVolume(const cbc3d::TetMesh& mesh)
+{
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double volume = 0.0;
+  for (const auto& t : mesh.Tets)
+  {
+    const auto& p = mesh.Points;
+    const double v = cbc3d::SignedVolume(p[t[0]], p[t[1]], p[t[2]], p[t[3]]);
+    sum += v * (p[t[0]] + p[t[1]] + p[t[2]] + p[t[3]]) / 4.0;
+    volume += v;
+  }
+  return { sum / volume, volume };
+}
+} // namespace
+
+TEST(Deformation, CoarseBallEndsOnItsSphere)
+{
+  // The targets, boundary voxel centres, lie within one voxel inside the sphere of radius 11
+  // (a centre at 10 mm or less has all its face-neighbours inside): every surface vertex
+  // must end within that shell's reach, one voxel of the sphere.
+  const cbc3d::LabelImage image = BallImage(32, 11.0);
+  const cbc3d::TetMesh mesh = DeformedBall(image);
+  const Eigen::Vector3d centre = Eigen::Vector3d::Constant(15.5);
+  const auto surface = cbc3d::TissueSurfaceVertices(mesh);
+  double farthest = 0.0;
+  for (const auto v : surface.at(1))
+    farthest = std::max(farthest, std::abs((mesh.Points[v] - centre).norm() - 11.0));
+  EXPECT_LE(farthest, 1.0 + 0.05);
+  const auto lattice = Lattice(image, 8.0); // before: the lattice's surface is far off
+  const auto latticeSurface = cbc3d::TissueSurfaceVertices(lattice);
+  double latticeFarthest = 0.0;
+  for (const auto v : latticeSurface.at(1))
+    latticeFarthest = std::max(latticeFarthest, std::abs((lattice.Points[v] - centre).norm() - 11.0));
+  EXPECT_GT(latticeFarthest, 2.0);
+}
+
+TEST(Deformation, RigidlyShiftedImageMovesTheMeshRigidly)
+{
+  // A mesh fitted to a ball, deformed onto the same ball moved 2 voxels along x: the mesh
+  // moves as a whole (its centroid by the shift, its volume kept) and no tet is spoilt.
+  const cbc3d::LabelImage image = BallImage(32, 11.0);
+  const cbc3d::TetMesh fitted = DeformedBall(image);
+  cbc3d::LabelImage shifted = Cube(32, 0);
+  for (int k = 0; k < 32; ++k)
+    for (int j = 0; j < 32; ++j)
+      for (int i = 2; i < 32; ++i)
+        shifted.Labels[shifted.VoxelIndex(i, j, k)] = image.LabelAt(i - 2, j, k);
+  cbc3d::DeformationParams params;
+  cbc3d::TetMesh moved;
+  cbc3d::DeformationResult result;
+  ASSERT_TRUE(cbc3d::DeformMesh(shifted, fitted, params, moved, result).IsOk());
+  const auto before = CentroidAndVolume(fitted), after = CentroidAndVolume(moved);
+  EXPECT_NEAR((after.first - before.first).x(), 2.0, 0.1);
+  EXPECT_NEAR((after.first - before.first).y(), 0.0, 0.1);
+  EXPECT_NEAR((after.first - before.first).z(), 0.0, 0.1);
+  EXPECT_NEAR(after.second / before.second, 1.0, 0.02);
+  for (const auto& tet : moved.Tets)
+    ASSERT_TRUE(cbc3d::DihedralAnglesWithin(moved.Points[tet[0]], moved.Points[tet[1]], moved.Points[tet[2]],
+      moved.Points[tet[3]], params.MinimumDihedralAngle / cbc3d::RadiansToDegrees * (1.0 - 1e-9)));
+
+  // Without the rigid part the elastic step alone, held back by the quality guard, lags.
+  params.RigidAlignment = false;
+  ASSERT_TRUE(cbc3d::DeformMesh(shifted, fitted, params, moved, result).IsOk());
+  EXPECT_LT((CentroidAndVolume(moved).first - before.first).x(), 1.0);
 }
