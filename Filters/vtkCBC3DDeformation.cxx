@@ -76,6 +76,7 @@ int vtkCBC3DDeformation::RequestData(
   params.Pattern = static_cast<cbc3d::TargetPattern>(this->Pattern);
   params.Penalty = this->Penalty;
   params.MinimumDihedralAngle = this->MinimumDihedralAngle;
+  params.RigidAlignment = this->RigidAlignment;
   params.DefaultMaterial.PoissonRatio = this->PoissonRatio;
   for (const auto& entry : this->YoungModuli)
   {
@@ -138,6 +139,7 @@ void vtkCBC3DDeformation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Pattern: " << this->GetPatternAsString() << "\n";
   os << indent << "Penalty: " << this->Penalty << "\n";
   os << indent << "MinimumDihedralAngle: " << this->MinimumDihedralAngle << " degrees\n";
+  os << indent << "RigidAlignment: " << (this->RigidAlignment ? "on" : "off") << "\n";
   os << indent << "PoissonRatio: " << this->PoissonRatio << "\n";
   for (const auto& entry : this->YoungModuli)
   {

@@ -12,8 +12,9 @@
  * voxels with the label-set of the voxel and its face-neighbours, thinned by Pattern (after a
  * voxel is taken, its neighbours through a vertex, an edge or a face are not; None keeps all).
  * Each iteration matches every source to the nearest target with its label-set within twice
- * the local element size (the mean length of its edges), moves it by at most that size, and
- * lets the interior follow through linear elasticity (4-node tets, Eigen sparse solvers), the
+ * the local element size (the mean length of its edges), moves the whole mesh by the rotation
+ * and translation that best fit the matches (RigidAlignment), moves each source by at most
+ * that size, and lets the interior follow through linear elasticity (4-node tets, Eigen sparse solvers), the
  * matches acting as penalty springs of Penalty times the vertex's own stiffness. A step that
  * would invert a tet or make a dihedral angle smaller than MinimumDihedralAngle (or larger than
  * 180 minus it) holds the offending vertices back. Topology and labels do not change.
@@ -88,6 +89,16 @@ public:
 
   ///@{
   /**
+   * Whether each iteration first moves the whole mesh by the rigid fit of its matches (default
+   * on): a rigid move strains no tet, so a mesh offset from its image follows it whole.
+   */
+  vtkSetMacro(RigidAlignment, bool);
+  vtkGetMacro(RigidAlignment, bool);
+  vtkBooleanMacro(RigidAlignment, bool);
+  ///@}
+
+  ///@{
+  /**
    * Elastic material: Poisson's ratio for all tissues (default 0.3) and a Young's modulus per
    * tissue label (default 1 for every tissue; only ratios matter).
    */
@@ -108,6 +119,7 @@ protected:
   int Pattern = EDGE;
   double Penalty = 10.0;
   double MinimumDihedralAngle = 20.0;
+  bool RigidAlignment = true;
   double PoissonRatio = 0.3;
   std::map<int, double> YoungModuli;
 

@@ -404,6 +404,7 @@ def run_table1(cli):
 def print_table1(rows):
     print("The paper's Table 1 on cbc3d-nidus.nii.gz, 10 iterations (the paper's Hausdorff metric there "
           "is not defined; cbc3d's is the paper's case-study definition):")
+    print()
     table = []
     for pattern, r in rows.items():
         targets, paper_hd, paper_seconds = PAPER_TABLE_1[pattern]
