@@ -24,6 +24,8 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <new>
+#include <stdexcept>
 #include <unistd.h>
 
 namespace
@@ -111,9 +113,8 @@ bool RunStage(vtkAlgorithm* stage, const std::string& name, bool showProgress, R
   }
   return true;
 }
-} // namespace
 
-int main(int argc, char* argv[])
+int Run(int argc, char* argv[])
 {
   CommandLineOptions options;
   std::string error;
@@ -234,4 +235,23 @@ int main(int argc, char* argv[])
     std::cout << FormatSummary(report) << std::flush;
   }
   return 0;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  // A run too large for the machine ends with a message, not an abort; the output, written to
+  // a temporary file and renamed only when whole, is not left half-made.
+  try
+  {
+    return Run(argc, argv);
+  }
+  catch (const std::bad_alloc&)
+  {
+    return Fail("out of memory: try a larger --bcc-size, or a machine with more memory");
+  }
+  catch (const std::exception& e)
+  {
+    return Fail(std::string("unexpected error: ") + e.what());
+  }
 }
