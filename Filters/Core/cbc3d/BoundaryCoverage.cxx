@@ -14,7 +14,6 @@ BoundaryCoverage::BoundaryCoverage(const LabelImage& image, const TissueComponen
   : Reach(reach)
   , Threads(numberOfThreads)
 {
-  const auto& d = image.Dimensions;
   for (const auto& [label, voxels] : TissueBoundaryVoxels(image, numberOfThreads))
   {
     Tissue& tissue = this->Tissues[label];
@@ -23,8 +22,7 @@ BoundaryCoverage::BoundaryCoverage(const LabelImage& image, const TissueComponen
       const std::int32_t component = components.ComponentOfVoxel[v];
       if (component >= 0 && components.Size[component] >= minimumVoxels)
       {
-        tissue.Centres.push_back(image.IndexToWorld(Eigen::Vector3d(double(v % d[0]),
-          double((v / d[0]) % d[1]), double(v / (std::int64_t(d[0]) * d[1])))));
+        tissue.Centres.push_back(image.VoxelCentre(v));
       }
     }
     // Boundary voxels are dense: a grid of a few voxels per cell keeps each query short.
@@ -36,12 +34,8 @@ BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>
   const std::vector<Tet>& tets, const std::vector<std::int32_t>& labels, double distance) const
 {
   // Per tissue, the faces between one of its tets and a tet of another label, or nothing.
-  TetMesh topology;
-  topology.Tets = tets;
-  topology.Labels = labels;
-  topology.Points.resize(points.size());
   std::map<std::int32_t, std::vector<Face>> surfaces;
-  for (const MeshFace& face : FindMeshFaces(topology))
+  for (const MeshFace& face : FindMeshFaces(tets, points.size()))
   {
     for (int side = 0; side < std::min(face.TetCount, 2); ++side)
     {

@@ -54,6 +54,13 @@ struct LabelImage
 
   /// Continuous index (i,j,k) to world, and back.
   Eigen::Vector3d IndexToWorld(const Eigen::Vector3d& index) const;
+  /// The world-space centre of the voxel at a linear index (VoxelIndex's inverse, then world).
+  Eigen::Vector3d VoxelCentre(std::int64_t voxel) const
+  {
+    const std::int64_t row = this->Dimensions[0], slice = row * this->Dimensions[1];
+    return this->IndexToWorld(
+      Eigen::Vector3d(double(voxel % row), double((voxel / row) % this->Dimensions[1]), double(voxel / slice)));
+  }
   Eigen::Vector3d WorldToIndex(const Eigen::Vector3d& world) const;
 
   /// The tissue labels present in the image, sorted ascending.

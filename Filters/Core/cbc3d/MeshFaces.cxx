@@ -7,7 +7,7 @@
 
 namespace cbc3d
 {
-std::vector<MeshFace> FindMeshFaces(const TetMesh& mesh)
+std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount)
 {
   struct Entry
   {
@@ -15,23 +15,21 @@ std::vector<MeshFace> FindMeshFaces(const TetMesh& mesh)
     std::int64_t Tet;
     bool operator<(const Entry& o) const { return std::tie(B, C, Tet) < std::tie(o.B, o.C, o.Tet); }
   };
-  auto sortedFace = [&mesh](std::size_t t, int f) {
-    std::array<PointId, 3> ids = { mesh.Tets[t][TetFaces[f][0]], mesh.Tets[t][TetFaces[f][1]],
-      mesh.Tets[t][TetFaces[f][2]] };
+  auto sortedFace = [&tets](std::size_t t, int f) {
+    std::array<PointId, 3> ids = { tets[t][TetFaces[f][0]], tets[t][TetFaces[f][1]], tets[t][TetFaces[f][2]] };
     std::sort(ids.begin(), ids.end());
     return ids;
   };
   // Counting sort of the 4 faces of every tet by their smallest vertex.
-  const std::size_t pointCount = mesh.Points.size();
   std::vector<std::size_t> start(pointCount + 1, 0);
-  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  for (std::size_t t = 0; t < tets.size(); ++t)
     for (int f = 0; f < 4; ++f)
       ++start[sortedFace(t, f)[0] + 1];
   for (std::size_t p = 0; p < pointCount; ++p)
     start[p + 1] += start[p];
   std::vector<Entry> entries(start[pointCount]);
   std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  for (std::size_t t = 0; t < tets.size(); ++t)
     for (int f = 0; f < 4; ++f)
     {
       const auto ids = sortedFace(t, f);

@@ -17,9 +17,15 @@ struct MeshFace
   int TetCount = 0; // 1: on the mesh boundary; 2: inside; more: the mesh does not conform
 };
 
-/// Every distinct face of the mesh (grouped in linear time by bucketing on the smallest
-/// vertex), in ascending vertex order.
-std::vector<MeshFace> FindMeshFaces(const TetMesh& mesh);
+/// Every distinct face of tets over points 0..pointCount-1 (grouped in linear time by bucketing
+/// on the smallest vertex), in ascending vertex order.
+std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount);
+
+/// Every distinct face of the mesh.
+inline std::vector<MeshFace> FindMeshFaces(const TetMesh& mesh)
+{
+  return FindMeshFaces(mesh.Tets, mesh.Points.size());
+}
 } // namespace cbc3d
 
 #endif

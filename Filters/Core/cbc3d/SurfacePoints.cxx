@@ -89,7 +89,6 @@ std::map<std::int32_t, std::vector<std::int64_t>> TissueBoundaryVoxels(
 std::map<std::int32_t, std::vector<Eigen::Vector3d>> TissueBoundaryVoxelCentres(
   const LabelImage& image, int numberOfThreads)
 {
-  const auto& d = image.Dimensions;
   std::map<std::int32_t, std::vector<Eigen::Vector3d>> result;
   for (const auto& [label, voxels] : TissueBoundaryVoxels(image, numberOfThreads))
   {
@@ -97,10 +96,7 @@ std::map<std::int32_t, std::vector<Eigen::Vector3d>> TissueBoundaryVoxelCentres(
     centres.reserve(voxels.size());
     for (const std::int64_t voxel : voxels)
     {
-      const std::int64_t i = voxel % d[0];
-      const std::int64_t j = (voxel / d[0]) % d[1];
-      const std::int64_t k = voxel / (std::int64_t(d[0]) * d[1]);
-      centres.push_back(image.IndexToWorld(Eigen::Vector3d(double(i), double(j), double(k))));
+      centres.push_back(image.VoxelCentre(voxel));
     }
   }
   return result;

@@ -17,17 +17,23 @@ inline cbc3d::LabelImage Cube(int n, std::int32_t label)
   return image;
 }
 
-/// An n x n x n image of background 0 holding a ball of `label`: the voxels whose centres lie
-/// within `radius` of the image's centre.
+/// Paints `label` on the voxels whose centres lie within `radius` of `centre` (world space; the
+/// same as index space for the images above).
+inline void PaintBall(cbc3d::LabelImage& image, const Eigen::Vector3d& centre, double radius, std::int32_t label)
+{
+  const auto& d = image.Dimensions;
+  for (int k = 0; k < d[2]; ++k)
+    for (int j = 0; j < d[1]; ++j)
+      for (int i = 0; i < d[0]; ++i)
+        if ((image.IndexToWorld(Eigen::Vector3d(i, j, k)) - centre).norm() <= radius)
+          image.Labels[image.VoxelIndex(i, j, k)] = label;
+}
+
+/// An n x n x n image of background 0 holding a ball of `label` around the image's centre.
 inline cbc3d::LabelImage BallImage(int n, double radius, std::int32_t label = 1)
 {
   cbc3d::LabelImage image = Cube(n, 0);
-  const Eigen::Vector3d centre = Eigen::Vector3d::Constant(0.5 * (n - 1));
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        if ((Eigen::Vector3d(i, j, k) - centre).norm() <= radius)
-          image.Labels[image.VoxelIndex(i, j, k)] = label;
+  PaintBall(image, Eigen::Vector3d::Constant(0.5 * (n - 1)), radius, label);
   return image;
 }
 

@@ -2,6 +2,8 @@
 #include "cbc3d/TetGeometry.h"
 #include "cbc3d/TetTopology.h"
 
+#include "TestImages.h"
+
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <gtest/gtest.h>
@@ -16,18 +18,11 @@ namespace
 cbc3d::LabelImage Ball(int n, double radius, std::int32_t label, const Eigen::Vector3d& spacing,
   const Eigen::Matrix3d& direction, const Eigen::Vector3d& origin)
 {
-  cbc3d::LabelImage image;
-  image.Dimensions = { n, n, n };
+  cbc3d::LabelImage image = Cube(n, 0);
   image.Spacing = spacing;
   image.Direction = direction;
   image.Origin = origin;
-  image.Labels.assign(static_cast<std::size_t>(n) * n * n, 0);
-  const Eigen::Vector3d centre = image.IndexToWorld(Eigen::Vector3d::Constant((n - 1) / 2.0));
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        if ((image.IndexToWorld(Eigen::Vector3d(i, j, k)) - centre).norm() <= radius)
-          image.Labels[image.VoxelIndex(i, j, k)] = label;
+  PaintBall(image, image.IndexToWorld(Eigen::Vector3d::Constant((n - 1) / 2.0)), radius, label);
   return image;
 }
 

@@ -22,14 +22,8 @@ namespace
 // voxels long, in a 28^3 image of 1 mm voxels.
 cbc3d::LabelImage BallAndTube()
 {
-  cbc3d::LabelImage image;
-  image.Dimensions = { 28, 28, 28 };
-  image.Labels.assign(28 * 28 * 28, 0);
-  for (int k = 0; k < 28; ++k)
-    for (int j = 0; j < 28; ++j)
-      for (int i = 0; i < 28; ++i)
-        if ((Eigen::Vector3d(i, j, k) - Eigen::Vector3d(11, 11, 11)).norm() <= 7.0)
-          image.Labels[image.VoxelIndex(i, j, k)] = 1;
+  cbc3d::LabelImage image = Cube(28, 0);
+  PaintBall(image, Eigen::Vector3d(11, 11, 11), 7.0, 1);
   for (int i = 8; i < 20; ++i)
     image.Labels[image.VoxelIndex(i, 23, 23)] = 2;
   return image;
@@ -142,9 +136,7 @@ TEST(Refinement, FidelityZeroRelabelsWithoutSplitting)
 {
   // A box of 8 x 8 x 8 voxels meshed with a lattice of 1 mm cubes: no split, every tet at
   // level 0, and majority labelling keeps about the box's volume.
-  cbc3d::LabelImage image;
-  image.Dimensions = { 16, 16, 16 };
-  image.Labels.assign(16 * 16 * 16, 0);
+  cbc3d::LabelImage image = Cube(16, 0);
   for (int k = 4; k < 12; ++k)
     for (int j = 4; j < 12; ++j)
       for (int i = 4; i < 12; ++i)
