@@ -1,5 +1,6 @@
 #include "cbc3d/Deformation.h"
 
+#include "cbc3d/InteriorSmoothing.h"
 #include "cbc3d/MeshFaces.h"
 #include "cbc3d/Parallel.h"
 #include "cbc3d/PointGrid.h"
@@ -84,17 +85,24 @@ Sources FindSources(const TetMesh& mesh)
   return sources;
 }
 
-// The label-sets a source may match: its own; failing that (no target has it), the sets of
-// two or more of its labels that targets have, such as the two-tissue interfaces meeting at a
-// triple line.
+// The label-sets a source may match: those holding all its labels (its own, or more where a
+// third tissue touches, as on the speckled border of a k-means image); failing that (no target
+// has them), the sets of two or more of its labels that targets have, such as the two-tissue
+// interfaces meeting at a triple line.
 std::vector<int> AcceptedSets(const LabelSet& source, const std::map<LabelSet, int>& present)
 {
-  const auto exact = present.find(source);
-  if (exact != present.end())
-  {
-    return { exact->second };
-  }
   std::vector<int> accepted;
+  for (const auto& [set, id] : present)
+  {
+    if (std::includes(set.begin(), set.end(), source.begin(), source.end()))
+    {
+      accepted.push_back(id);
+    }
+  }
+  if (!accepted.empty())
+  {
+    return accepted;
+  }
   for (const auto& [set, id] : present)
   {
     if (set.size() >= 2 && std::includes(source.begin(), source.end(), set.begin(), set.end()))
@@ -151,7 +159,7 @@ public:
       const auto found = voxels.find(label);
       if (found != voxels.end())
       {
-        this->Tissues.push_back({ ids, found->second, 0.0 });
+        this->Tissues.push_back({ label, ids, found->second, 0.0 });
       }
     }
     for (Tissue& tissue : this->Tissues)
@@ -264,9 +272,60 @@ public:
     }
   }
 
+  /// The boundary voxel of tissue `label` nearest to x within `radius`; null if none.
+  const Eigen::Vector3d* NearestVoxel(std::int32_t label, const Eigen::Vector3d& x, double radius) const
+  {
+    for (const Tissue& tissue : this->Tissues)
+    {
+      if (tissue.Label == label)
+      {
+        const int nearest = tissue.Grid->Nearest(x, radius);
+        return nearest < 0 ? nullptr : &tissue.Voxels[nearest];
+      }
+    }
+    return nullptr;
+  }
+
+  /// For each point, the farthest boundary voxel (of any tissue) whose nearest surface vertex
+  /// of that tissue it is, when that voxel lies farther than `reach[point]`; the voxel
+  /// distances are returned in `distance` (0 where none).
+  void FarthestUncovered(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& reach,
+    std::vector<Eigen::Vector3d>& voxel, std::vector<double>& distance) const
+  {
+    voxel.assign(points.size(), Eigen::Vector3d::Zero());
+    distance.assign(points.size(), 0.0);
+    for (const Tissue& tissue : this->Tissues)
+    {
+      std::vector<Eigen::Vector3d> vertices;
+      for (const PointId v : tissue.Vertices)
+      {
+        vertices.push_back(points[v]);
+      }
+      const PointGrid vertexGrid(vertices, this->Cell);
+      const std::int64_t count = static_cast<std::int64_t>(tissue.Voxels.size());
+      std::vector<int> nearest(count);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
+      for (std::int64_t i = 0; i < count; ++i)
+      {
+        nearest[i] = vertexGrid.NearestAny(tissue.Voxels[i]);
+      }
+      for (std::int64_t i = 0; i < count; ++i)
+      {
+        const PointId v = tissue.Vertices[nearest[i]];
+        const double d = (tissue.Voxels[i] - points[v]).norm();
+        if (d > reach[v] && d > distance[v])
+        {
+          distance[v] = d;
+          voxel[v] = tissue.Voxels[i];
+        }
+      }
+    }
+  }
+
 private:
   struct Tissue
   {
+    std::int32_t Label;
     std::vector<PointId> Vertices;
     std::vector<Eigen::Vector3d> Voxels;
     double Hausdorff;
@@ -416,6 +475,12 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   cg.setTolerance(1e-6);
   cg.setMaxIterations(50); // per call: the solve runs in chunks so that a stop is seen soon
   std::vector<Eigen::Vector3d>& x = out.Points;
+  const InteriorSmoothing smoothing(mesh.Tets, x.size());
+  std::vector<char> interior(x.size(), 1);
+  for (const PointId p : sources.Points)
+  {
+    interior[p] = 0;
+  }
   Eigen::VectorXd du = Eigen::VectorXd::Zero(stiffness.rows());
   Eigen::Isometry3d placement = Eigen::Isometry3d::Identity(); // the rigid moves so far
   for (int iteration = 0; iteration < params.Iterations; ++iteration)
@@ -502,6 +567,42 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
           }
           x.swap(trial);
           placement = rigid * placement;
+        }
+      }
+    }
+
+    // Then the vertices that set a tissue's Hausdorff distance, wherever the matches left them
+    // (after the rigid move, which they do not steer): a vertex farther than half its element
+    // size from the boundary voxels of one of its tissues, or nearest to a boundary voxel
+    // farther than that, heads for that voxel.
+    std::vector<double> reach(x.size());
+    for (std::size_t p = 0; p < x.size(); ++p)
+    {
+      reach[p] = 0.5 * sources.LocalSize[p];
+    }
+    std::vector<Eigen::Vector3d> uncovered;
+    std::vector<double> uncoveredDistance;
+    fidelity.FarthestUncovered(x, reach, uncovered, uncoveredDistance);
+#pragma omp parallel for schedule(dynamic, 64) num_threads(ThreadCount(threads))
+    for (std::int64_t s = 0; s < sourceCount; ++s)
+    {
+      const PointId p = sources.Points[s];
+      double worst = reach[p];
+      if (uncoveredDistance[p] > worst)
+      {
+        worst = uncoveredDistance[p];
+        goals[s] = uncovered[p];
+        matched[s] = 1;
+      }
+      for (const std::int32_t label : sources.Labels[s])
+      {
+        const Eigen::Vector3d* voxel =
+          label == OutsideLabel ? nullptr : fidelity.NearestVoxel(label, x[p], 3.0 * sources.LocalSize[p]);
+        if (voxel && (*voxel - x[p]).norm() > worst)
+        {
+          worst = (*voxel - x[p]).norm();
+          goals[s] = *voxel;
+          matched[s] = 1;
         }
       }
     }
@@ -625,6 +726,26 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
       result.Displacement[p] += trial[p] - x[p];
     }
     x.swap(trial);
+    {
+      // Interior vertices around the held ones make room for them on the next step.
+      std::vector<char> movable(x.size(), 0);
+      for (const Tet& tet : mesh.Tets)
+      {
+        if (std::any_of(tet.begin(), tet.end(), [&](PointId p) { return share[p] < 1.0; }))
+        {
+          for (const PointId p : tet)
+          {
+            movable[p] = interior[p];
+          }
+        }
+      }
+      const std::vector<Eigen::Vector3d> before = x;
+      smoothing.Smooth(x, movable, 2);
+      for (std::size_t p = 0; p < x.size(); ++p)
+      {
+        result.Displacement[p] += x[p] - before[p];
+      }
+    }
     fidelity.Accept(x, keepGoing);
     ++result.Iterations;
     result.MeanStep.push_back(moved / double(sourceCount));

@@ -51,12 +51,16 @@ struct DeformationResult
 
 /// Moves the surfaces and interfaces of a labelled tet mesh onto the image boundaries (paper,
 /// section 3.3): each iteration matches every surface or interface vertex (label-set: the
-/// labels of its tets, plus outside for the outer surface) to the nearest boundary voxel with
-/// the same label-set within twice the local element size, moves it there by at most the local
-/// element size (the mean length of its edges), and lets the interior follow through linear
-/// elasticity with the matches as penalty springs. A step that would invert a tet or push a
-/// dihedral angle past MinimumDihedralAngle holds the offending vertices back; the output
-/// never holds an inverted tet. Topology and labels are unchanged.
+/// labels of its tets, plus outside for the outer surface) to the nearest boundary voxel whose
+/// label-set holds its own, within twice the local element size; a vertex farther than half
+/// its element size from the boundary voxels of one of its tissues (or nearest to a boundary
+/// voxel that far from the mesh) heads for that voxel instead, as it sets the tissue's
+/// Hausdorff distance. Vertices move there by at most the local element size (the mean length
+/// of their edges), and the interior follows through linear elasticity with the matches as
+/// penalty springs. A step that would invert a tet or push a dihedral angle past
+/// MinimumDihedralAngle holds the offending vertices back, and interior vertices around them
+/// are smoothed to give them room for the next step; no tissue's Hausdorff distance grows. The
+/// output never holds an inverted tet. Topology and labels are unchanged.
 Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
   TetMesh& out, DeformationResult& result, const Progress& progress = nullptr);
 } // namespace cbc3d

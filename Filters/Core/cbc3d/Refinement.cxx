@@ -3,6 +3,7 @@
 #include "cbc3d/BoundaryCoverage.h"
 #include "cbc3d/Parallel.h"
 #include "cbc3d/RedGreenMesh.h"
+#include "cbc3d/SurfaceEars.h"
 #include "cbc3d/TetVoxelSampler.h"
 #include "cbc3d/TissueComponents.h"
 
@@ -312,6 +313,13 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
       hierarchy.SplitEdge(a, b);
     }
     ++result.Passes;
+  }
+
+  // Spikes on the surface would keep their tips off the image boundary through deformation.
+  if (RemoveSurfaceEars(mesh.Tets, hierarchy.Points().size(), mesh.Labels,
+        [&](std::int32_t label) { return label != NoLabel && image.IsTissue(label); }, NoLabel) > 0)
+  {
+    fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
   }
 
   // A component still missing (at the minimum edge length) gets the tet holding most of it.

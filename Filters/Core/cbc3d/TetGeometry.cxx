@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 namespace cbc3d
@@ -36,11 +37,10 @@ std::array<double, 6> DihedralAngles(const Vec3& p0, const Vec3& p1, const Vec3&
   return angles;
 }
 
-bool DihedralAnglesWithin(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3,
-  double minimum)
+double LargestDihedralCosine(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3)
 {
   // The dihedral angle at the edge shared by two faces is the angle between their normals or
-  // its supplement: |cos| <= cos(minimum) holds for both bounds at once.
+  // its supplement, so |cos| of the normals' angle measures both at once.
   const std::array<Vec3, 4> normals = { (p2 - p1).cross(p3 - p1), (p3 - p0).cross(p2 - p0),
     (p1 - p0).cross(p3 - p0), (p2 - p0).cross(p1 - p0) };
   std::array<double, 4> lengths;
@@ -49,20 +49,23 @@ bool DihedralAnglesWithin(const Vec3& p0, const Vec3& p1, const Vec3& p2, const 
     lengths[f] = normals[f].norm();
     if (!(lengths[f] > 0.0))
     {
-      return false;
+      return 1.0;
     }
   }
-  const double limit = std::cos(minimum);
+  double largest = 0.0;
   for (int f = 0; f < 4; ++f)
   {
     for (int g = f + 1; g < 4; ++g)
     {
-      if (std::abs(normals[f].dot(normals[g])) > limit * lengths[f] * lengths[g])
-      {
-        return false;
-      }
+      largest = std::max(largest, std::abs(normals[f].dot(normals[g])) / (lengths[f] * lengths[g]));
     }
   }
-  return true;
+  return largest;
+}
+
+bool DihedralAnglesWithin(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3,
+  double minimum)
+{
+  return LargestDihedralCosine(p0, p1, p2, p3) <= std::cos(minimum);
 }
 } // namespace cbc3d

@@ -16,6 +16,11 @@ double SignedVolume(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& 
 std::array<double, 6> DihedralAngles(const Vec3& p0, const Vec3& p1, const Vec3& p2,
   const Vec3& p3);
 
+/// The largest |cos| of the six dihedral angles: the cosine of the angle margin (the smallest
+/// of each angle and 180 degrees minus it), without trigonometry. 1 for a tet with a
+/// degenerate face.
+double LargestDihedralCosine(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3);
+
 /// Whether every dihedral angle lies within [minimum, pi - minimum] (radians): the same test as
 /// DihedralAngles against the bound, by the cosines between face normals, which costs no
 /// trigonometry. A tet with a degenerate face fails.

@@ -78,6 +78,13 @@ TEST(TetGeometry, AnglesWithinAgreesWithTheAngles)
   EXPECT_TRUE(cbc3d::DihedralAnglesWithin(a, b, c, d, regular - 1e-6));
   EXPECT_FALSE(cbc3d::DihedralAnglesWithin(a, b, c, d, regular + 1e-6));
   EXPECT_FALSE(cbc3d::DihedralAnglesWithin(a, b, c, a, 0.1)); // degenerate
+  EXPECT_NEAR(cbc3d::LargestDihedralCosine(a, b, c, d), 1.0 / 3.0, 1e-12);
+  EXPECT_EQ(cbc3d::LargestDihedralCosine(a, b, c, a), 1.0);
+  // The sliver's 3-degree angle sets the largest |cos|.
+  const double sliver = 3.0 / cbc3d::RadiansToDegrees;
+  EXPECT_NEAR(cbc3d::LargestDihedralCosine(Vec3(0, 0, 0), Vec3(0.5, 1, 0), Vec3(1, 0, 0),
+                Vec3(0.5, std::cos(sliver), std::sin(sliver))),
+    std::cos(sliver), 1e-12);
   // Random tets, each bound: the same verdict as the smallest and largest angle.
   std::mt19937 random(3);
   std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
