@@ -142,6 +142,7 @@ std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::
 }
 // Keeps each tissue's Hausdorff distance from growing: the distance between the tissue's
 // surface vertices and its boundary voxel centres (the measure vtkCBC3DMeshQuality reports).
+// It keeps each tissue's vertices at the last accepted positions, with a grid over them.
 class FidelityGuard
 {
 public:
@@ -169,19 +170,20 @@ public:
         return;
       }
       tissue.Grid = std::make_unique<PointGrid>(tissue.Voxels, cell);
-      tissue.Hausdorff = this->Measure(tissue, mesh.Points);
+      tissue.Current = std::make_unique<Snapshot>(tissue.Vertices, mesh.Points, cell);
+      tissue.Hausdorff = this->Measure(tissue, *tissue.Current);
     }
   }
 
-  /// Holds back (share 0) the vertices whose step would push a tissue's Hausdorff distance past
-  /// its current value: vertices that would end farther from the tissue's boundary voxels, and
-  /// the former nearest vertices of boundary voxels that would be left farther from the mesh.
-  /// Returns how many vertices it held. Asks `keepGoing` before each tissue; when it says
-  /// stop, returns at once (the count then means nothing).
-  std::size_t Hold(const std::vector<Eigen::Vector3d>& current, const std::vector<Eigen::Vector3d>& trial,
-    std::vector<double>& share, const std::function<bool()>& keepGoing) const
+  /// Holds back (share 0) the vertices whose step from the accepted positions to `trial` would
+  /// push a tissue's Hausdorff distance past its current value: vertices that would end farther
+  /// from the tissue's boundary voxels, and the former nearest vertices of boundary voxels that
+  /// would be left farther from the mesh. Returns how many vertices it held. Asks `keepGoing`
+  /// before each tissue; when it says stop, returns at once (the count then means nothing).
+  std::size_t Hold(const std::vector<Eigen::Vector3d>& trial, std::vector<double>& share,
+    const std::function<bool()>& keepGoing) const
   {
-    std::vector<char> hold(current.size(), 0);
+    std::vector<char> hold(trial.size(), 0);
     for (const Tissue& tissue : this->Tissues)
     {
       if (!keepGoing())
@@ -199,21 +201,15 @@ public:
           hold[v] = 1; // each vertex appears once in a tissue's list
         }
       }
-      std::vector<Eigen::Vector3d> before, after;
-      for (const PointId v : tissue.Vertices)
-      {
-        before.push_back(current[v]);
-        after.push_back(trial[v]);
-      }
-      const PointGrid beforeGrid(before, this->Cell), afterGrid(after, this->Cell);
+      const Snapshot after(tissue.Vertices, trial, this->Cell);
       const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Voxels.size());
 #pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
       for (std::int64_t i = 0; i < voxelCount; ++i)
       {
         const Eigen::Vector3d& voxel = tissue.Voxels[i];
-        if (afterGrid.Nearest(voxel, limit) < 0)
+        if (after.Grid->Nearest(voxel, limit) < 0)
         {
-          const int covering = beforeGrid.Nearest(voxel, limit);
+          const int covering = tissue.Current->Grid->Nearest(voxel, limit);
           if (covering >= 0 && share[tissue.Vertices[covering]] > 0.0)
           {
 #pragma omp atomic write
@@ -234,10 +230,12 @@ public:
     return held;
   }
 
-  /// Takes these positions' distances as the new limits unless some tissue's would grow;
-  /// returns whether it took them. Asks `keepGoing` before each tissue (false when stopped).
+  /// Takes these positions, and their distances as the new limits, unless some tissue's would
+  /// grow; returns whether it took them. Asks `keepGoing` before each tissue (false when
+  /// stopped).
   bool AcceptIfNoneGrows(const std::vector<Eigen::Vector3d>& points, const std::function<bool()>& keepGoing)
   {
+    std::vector<std::unique_ptr<Snapshot>> snapshots;
     std::vector<double> measured;
     for (const Tissue& tissue : this->Tissues)
     {
@@ -245,7 +243,8 @@ public:
       {
         return false;
       }
-      measured.push_back(this->Measure(tissue, points));
+      snapshots.push_back(std::make_unique<Snapshot>(tissue.Vertices, points, this->Cell));
+      measured.push_back(this->Measure(tissue, *snapshots.back()));
       if (measured.back() > tissue.Hausdorff * (1.0 + 1e-12))
       {
         return false;
@@ -254,12 +253,13 @@ public:
     for (std::size_t t = 0; t < measured.size(); ++t)
     {
       this->Tissues[t].Hausdorff = measured[t];
+      this->Tissues[t].Current = std::move(snapshots[t]);
     }
     return true;
   }
 
-  /// Records the accepted positions' distances as the new limits. Asks `keepGoing` before
-  /// each tissue; when it says stop, returns at once.
+  /// Takes these positions, and their distances as the new limits where smaller. Asks
+  /// `keepGoing` before each tissue; when it says stop, returns at once.
   void Accept(const std::vector<Eigen::Vector3d>& points, const std::function<bool()>& keepGoing)
   {
     for (Tissue& tissue : this->Tissues)
@@ -268,7 +268,8 @@ public:
       {
         return;
       }
-      tissue.Hausdorff = std::min(tissue.Hausdorff, this->Measure(tissue, points));
+      tissue.Current = std::make_unique<Snapshot>(tissue.Vertices, points, this->Cell);
+      tissue.Hausdorff = std::min(tissue.Hausdorff, this->Measure(tissue, *tissue.Current));
     }
   }
 
@@ -287,32 +288,26 @@ public:
   }
 
   /// For each point, the farthest boundary voxel (of any tissue) whose nearest surface vertex
-  /// of that tissue it is, when that voxel lies farther than `reach[point]`; the voxel
-  /// distances are returned in `distance` (0 where none).
-  void FarthestUncovered(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& reach,
-    std::vector<Eigen::Vector3d>& voxel, std::vector<double>& distance) const
+  /// of that tissue, at the accepted positions, it is, when that voxel lies farther than
+  /// `reach[point]`; the voxel distances are returned in `distance` (0 where none).
+  void FarthestUncovered(const std::vector<double>& reach, std::vector<Eigen::Vector3d>& voxel,
+    std::vector<double>& distance) const
   {
-    voxel.assign(points.size(), Eigen::Vector3d::Zero());
-    distance.assign(points.size(), 0.0);
+    voxel.assign(reach.size(), Eigen::Vector3d::Zero());
+    distance.assign(reach.size(), 0.0);
     for (const Tissue& tissue : this->Tissues)
     {
-      std::vector<Eigen::Vector3d> vertices;
-      for (const PointId v : tissue.Vertices)
-      {
-        vertices.push_back(points[v]);
-      }
-      const PointGrid vertexGrid(vertices, this->Cell);
       const std::int64_t count = static_cast<std::int64_t>(tissue.Voxels.size());
       std::vector<int> nearest(count);
 #pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
       for (std::int64_t i = 0; i < count; ++i)
       {
-        nearest[i] = vertexGrid.NearestAny(tissue.Voxels[i]);
+        nearest[i] = tissue.Current->Grid->NearestAny(tissue.Voxels[i]);
       }
       for (std::int64_t i = 0; i < count; ++i)
       {
         const PointId v = tissue.Vertices[nearest[i]];
-        const double d = (tissue.Voxels[i] - points[v]).norm();
+        const double d = (tissue.Voxels[i] - tissue.Current->Points[nearest[i]]).norm();
         if (d > reach[v] && d > distance[v])
         {
           distance[v] = d;
@@ -323,24 +318,38 @@ public:
   }
 
 private:
+  // A tissue's surface vertices at some positions, with a grid over them (the grid refers to
+  // the positions, so a snapshot stays where it was made: it is neither copied nor moved).
+  struct Snapshot
+  {
+    Snapshot(const std::vector<PointId>& ids, const std::vector<Eigen::Vector3d>& points, double cell)
+    {
+      for (const PointId v : ids)
+      {
+        this->Points.push_back(points[v]);
+      }
+      this->Grid = std::make_unique<PointGrid>(this->Points, cell);
+    }
+    Snapshot(const Snapshot&) = delete;
+    Snapshot& operator=(const Snapshot&) = delete;
+
+    std::vector<Eigen::Vector3d> Points;
+    std::unique_ptr<PointGrid> Grid;
+  };
+
   struct Tissue
   {
     std::int32_t Label;
     std::vector<PointId> Vertices;
     std::vector<Eigen::Vector3d> Voxels;
     double Hausdorff;
-    std::unique_ptr<PointGrid> Grid;
+    std::unique_ptr<PointGrid> Grid;        // over Voxels
+    std::unique_ptr<Snapshot> Current;      // the vertices at the accepted positions
   };
 
-  // Two-sided distance by brute-force-free nearest queries, growing the radius until found.
-  double Measure(const Tissue& tissue, const std::vector<Eigen::Vector3d>& points) const
+  // Two-sided distance between the tissue's boundary voxels and its vertices at `at`.
+  double Measure(const Tissue& tissue, const Snapshot& at) const
   {
-    std::vector<Eigen::Vector3d> vertices;
-    for (const PointId v : tissue.Vertices)
-    {
-      vertices.push_back(points[v]);
-    }
-    const PointGrid vertexGrid(vertices, this->Cell);
     auto farthest = [this](const std::vector<Eigen::Vector3d>& from, const PointGrid& to,
                       const std::vector<Eigen::Vector3d>& toPoints) {
       double worst = 0.0; // a max reduction is exact: the same for any thread count
@@ -353,7 +362,7 @@ private:
       }
       return worst;
     };
-    return std::max(farthest(vertices, *tissue.Grid, tissue.Voxels), farthest(tissue.Voxels, vertexGrid, vertices));
+    return std::max(farthest(at.Points, *tissue.Grid, tissue.Voxels), farthest(tissue.Voxels, *at.Grid, at.Points));
   }
 
   double Cell;
@@ -582,7 +591,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     }
     std::vector<Eigen::Vector3d> uncovered;
     std::vector<double> uncoveredDistance;
-    fidelity.FarthestUncovered(x, reach, uncovered, uncoveredDistance);
+    fidelity.FarthestUncovered(reach, uncovered, uncoveredDistance);
 #pragma omp parallel for schedule(dynamic, 64) num_threads(ThreadCount(threads))
     for (std::int64_t s = 0; s < sourceCount; ++s)
     {
@@ -685,7 +694,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
       bad = BadTets(out, trial, bound, threads);
       if (bad.empty())
       {
-        const std::size_t held = fidelity.Hold(x, trial, share, keepGoing);
+        const std::size_t held = fidelity.Hold(trial, share, keepGoing);
         if (stop)
         {
           return Status::Aborted();
