@@ -485,6 +485,11 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   cg.setMaxIterations(50); // per call: the solve runs in chunks so that a stop is seen soon
   std::vector<Eigen::Vector3d>& x = out.Points;
   const InteriorSmoothing smoothing(mesh.Tets, x.size());
+  std::vector<double> reach(x.size()); // how far from the image a vertex may lie unchased
+  for (std::size_t p = 0; p < x.size(); ++p)
+  {
+    reach[p] = 0.5 * sources.LocalSize[p];
+  }
   std::vector<char> interior(x.size(), 1);
   for (const PointId p : sources.Points)
   {
@@ -570,10 +575,6 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
         }
         if (BadTets(out, trial, bound, threads).empty() && fidelity.AcceptIfNoneGrows(trial, keepGoing))
         {
-          for (std::size_t p = 0; p < x.size(); ++p)
-          {
-            result.Displacement[p] += trial[p] - x[p];
-          }
           x.swap(trial);
           placement = rigid * placement;
         }
@@ -584,11 +585,6 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     // (after the rigid move, which they do not steer): a vertex farther than half its element
     // size from the boundary voxels of one of its tissues, or nearest to a boundary voxel
     // farther than that, heads for that voxel.
-    std::vector<double> reach(x.size());
-    for (std::size_t p = 0; p < x.size(); ++p)
-    {
-      reach[p] = 0.5 * sources.LocalSize[p];
-    }
     std::vector<Eigen::Vector3d> uncovered;
     std::vector<double> uncoveredDistance;
     fidelity.FarthestUncovered(reach, uncovered, uncoveredDistance);
@@ -730,10 +726,6 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
       result.StopReason = "a step could not be made without spoiling tets; the previous mesh is kept";
       break;
     }
-    for (std::size_t p = 0; p < x.size(); ++p)
-    {
-      result.Displacement[p] += trial[p] - x[p];
-    }
     x.swap(trial);
     {
       // Interior vertices around the held ones make room for them on the next step.
@@ -748,12 +740,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
           }
         }
       }
-      const std::vector<Eigen::Vector3d> before = x;
       smoothing.Smooth(x, movable, 2);
-      for (std::size_t p = 0; p < x.size(); ++p)
-      {
-        result.Displacement[p] += x[p] - before[p];
-      }
     }
     fidelity.Accept(x, keepGoing);
     ++result.Iterations;
@@ -763,6 +750,10 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     {
       return Status::Aborted();
     }
+  }
+  for (std::size_t p = 0; p < x.size(); ++p)
+  {
+    result.Displacement[p] = x[p] - mesh.Points[p];
   }
   if (result.StopReason.empty())
   {
