@@ -113,6 +113,102 @@ std::vector<int> AcceptedSets(const LabelSet& source, const std::map<LabelSet, i
   return accepted;
 }
 
+// The registration's correspondences: each source's goal, from the targets whose label-sets
+// it accepts.
+class Matcher
+{
+public:
+  Matcher(const Sources& sources, const std::vector<BoundaryTarget>& targets, int threads)
+    : SourceList(sources)
+    , Threads(threads)
+  {
+    std::map<LabelSet, int> present; // label-sets as small integers
+    for (const BoundaryTarget& t : targets)
+    {
+      this->TargetSet.push_back(present.emplace(t.Labels, int(present.size())).first->second);
+      this->TargetPoints.push_back(t.Position);
+    }
+    for (std::size_t s = 0; s < sources.Points.size(); ++s)
+    {
+      this->Accepted.push_back(AcceptedSets(sources.Labels[s], present));
+      this->LargestSize = std::max(this->LargestSize, sources.LocalSize[sources.Points[s]]);
+    }
+    this->Cell = std::max(2.0 * this->LargestSize, 1e-6);
+    this->TargetGrid = std::make_unique<PointGrid>(this->TargetPoints, this->Cell);
+  }
+
+  /// Goals for the sources at positions x: each source's nearest target of an accepted
+  /// label-set within twice its element size, averaged with the targets whose nearest source
+  /// it is (so that parts of the image boundary far from every vertex pull the surface too).
+  /// Sources with neither are not `matched`.
+  void Match(const std::vector<Eigen::Vector3d>& x, std::vector<Eigen::Vector3d>& goals,
+    std::vector<char>& matched) const
+  {
+    const Sources& sources = this->SourceList;
+    const std::int64_t sourceCount = static_cast<std::int64_t>(sources.Points.size());
+    const std::int64_t targetCount = static_cast<std::int64_t>(this->TargetPoints.size());
+    std::vector<Eigen::Vector3d> sourcePoints(sourceCount);
+    for (std::int64_t s = 0; s < sourceCount; ++s)
+    {
+      sourcePoints[s] = x[sources.Points[s]];
+    }
+    const PointGrid sourceGrid(sourcePoints, this->Cell);
+    std::vector<int> nearestSource(targetCount);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
+    for (std::int64_t t = 0; t < targetCount; ++t)
+    {
+      nearestSource[t] = sourceGrid.Nearest(this->TargetPoints[t], 2.0 * this->LargestSize, [&](int s) {
+        return this->Accepts(s, t) &&
+          (this->TargetPoints[t] - sourcePoints[s]).norm() <= 2.0 * sources.LocalSize[sources.Points[s]];
+      });
+    }
+    std::vector<Eigen::Vector3d> goalSum(sourceCount, Eigen::Vector3d::Zero());
+    std::vector<int> goalCount(sourceCount, 0);
+    for (std::int64_t t = 0; t < targetCount; ++t)
+    {
+      if (nearestSource[t] >= 0)
+      {
+        goalSum[nearestSource[t]] += this->TargetPoints[t];
+        ++goalCount[nearestSource[t]];
+      }
+    }
+    goals.assign(sourceCount, Eigen::Vector3d::Zero());
+    matched.assign(sourceCount, 0);
+#pragma omp parallel for schedule(dynamic, 64) num_threads(ThreadCount(this->Threads))
+    for (std::int64_t s = 0; s < sourceCount; ++s)
+    {
+      const PointId p = sources.Points[s];
+      const int match = this->TargetGrid->Nearest(
+        x[p], 2.0 * sources.LocalSize[p], [&](int t) { return this->Accepts(s, t); });
+      if (match < 0 && goalCount[s] == 0)
+      {
+        continue; // no target near
+      }
+      const Eigen::Vector3d averaged = goalCount[s] > 0 ? Eigen::Vector3d(goalSum[s] / goalCount[s]) : Eigen::Vector3d::Zero();
+      goals[s] = match < 0 ? averaged
+        : goalCount[s] > 0 ? Eigen::Vector3d(0.5 * (averaged + this->TargetPoints[match]))
+                           : this->TargetPoints[match];
+      matched[s] = 1;
+    }
+  }
+
+private:
+  bool Accepts(std::int64_t source, std::int64_t target) const
+  {
+    const auto& sets = this->Accepted[source];
+    return std::find(sets.begin(), sets.end(), this->TargetSet[target]) != sets.end();
+  }
+
+  const Sources& SourceList;
+  int Threads;
+  std::vector<Eigen::Vector3d> TargetPoints;
+  std::vector<int> TargetSet;             // per target, the number of its label-set
+  std::vector<std::vector<int>> Accepted; // per source, the label-set numbers it accepts
+  double LargestSize = 0.0;               // the largest element size at a source
+  double Cell = 0.0;                      // grid cell: twice that
+  std::unique_ptr<PointGrid> TargetGrid;
+};
+
 // Tets that a move would invert or push past the angle bound.
 std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
   double minimumRadians, int threads)
@@ -442,25 +538,8 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     result.StopReason = "nothing to register (no surface vertex or no boundary voxel)";
     return Status::Ok();
   }
-  // Label-sets as small integers; each source accepts one or a few of them.
-  std::map<LabelSet, int> present;
-  std::vector<Eigen::Vector3d> targetPoints;
-  std::vector<int> targetSet;
-  for (const BoundaryTarget& t : targets)
-  {
-    targetSet.push_back(present.emplace(t.Labels, int(present.size())).first->second);
-    targetPoints.push_back(t.Position);
-  }
+  const Matcher matcher(sources, targets, threads);
   const std::int64_t sourceCount = static_cast<std::int64_t>(sources.Points.size());
-  std::vector<std::vector<int>> accepted(sourceCount);
-  double largestSize = 0.0;
-  for (std::int64_t s = 0; s < sourceCount; ++s)
-  {
-    accepted[s] = AcceptedSets(sources.Labels[s], present);
-    largestSize = std::max(largestSize, sources.LocalSize[sources.Points[s]]);
-  }
-  const double cell = std::max(2.0 * largestSize, 1e-6);
-  const PointGrid targetGrid(targetPoints, cell);
   // Boundary voxels are dense: a grid of a few voxels per cell keeps each query short.
   FidelityGuard fidelity(image, mesh, 2.0 * image.Spacing.maxCoeff(), threads, keepGoing);
   if (stopped(0.07))
@@ -500,55 +579,10 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   for (int iteration = 0; iteration < params.Iterations; ++iteration)
   {
     const double done = 0.1 + 0.9 * double(iteration) / params.Iterations;
-    // Goals: each source's nearest target of an accepted label-set within twice its element
-    // size, averaged with the targets whose nearest source it is (so that parts of the image
-    // boundary far from every vertex pull the surface too); approached by at most one element
-    // size. Unmatched sources keep their place.
-    std::vector<Eigen::Vector3d> sourcePoints(sourceCount);
-    for (std::int64_t s = 0; s < sourceCount; ++s)
-    {
-      sourcePoints[s] = x[sources.Points[s]];
-    }
-    const PointGrid sourceGrid(sourcePoints, cell);
-    std::vector<int> nearestSource(targets.size());
-#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(threads))
-    for (std::int64_t t = 0; t < static_cast<std::int64_t>(targets.size()); ++t)
-    {
-      nearestSource[t] = sourceGrid.Nearest(targetPoints[t], 2.0 * largestSize, [&](int s) {
-        const auto& sets = accepted[s];
-        return std::find(sets.begin(), sets.end(), targetSet[t]) != sets.end() &&
-          (targetPoints[t] - sourcePoints[s]).norm() <= 2.0 * sources.LocalSize[sources.Points[s]];
-      });
-    }
-    std::vector<Eigen::Vector3d> goalSum(sourceCount, Eigen::Vector3d::Zero());
-    std::vector<int> goalCount(sourceCount, 0);
-    for (std::size_t t = 0; t < targets.size(); ++t)
-    {
-      if (nearestSource[t] >= 0)
-      {
-        goalSum[nearestSource[t]] += targetPoints[t];
-        ++goalCount[nearestSource[t]];
-      }
-    }
-    std::vector<Eigen::Vector3d> goals(sourceCount);
-    std::vector<char> matched(sourceCount, 0);
-#pragma omp parallel for schedule(dynamic, 64) num_threads(ThreadCount(threads))
-    for (std::int64_t s = 0; s < sourceCount; ++s)
-    {
-      const PointId p = sources.Points[s];
-      const auto& sets = accepted[s];
-      const int match = targetGrid.Nearest(x[p], 2.0 * sources.LocalSize[p],
-        [&](int t) { return std::find(sets.begin(), sets.end(), targetSet[t]) != sets.end(); });
-      if (match < 0 && goalCount[s] == 0)
-      {
-        continue; // no target near: the vertex keeps its place
-      }
-      const Eigen::Vector3d averaged = goalCount[s] > 0 ? Eigen::Vector3d(goalSum[s] / goalCount[s]) : Eigen::Vector3d::Zero();
-      goals[s] = match < 0 ? averaged
-        : goalCount[s] > 0 ? Eigen::Vector3d(0.5 * (averaged + targetPoints[match]))
-                           : targetPoints[match];
-      matched[s] = 1;
-    }
+    // Goals, approached by at most one element size; unmatched sources keep their place.
+    std::vector<Eigen::Vector3d> goals;
+    std::vector<char> matched;
+    matcher.Match(x, goals, matched);
 
     // The rigid part of the match first (rotation and translation, Umeyama's least squares):
     // it moves the mesh without straining a tet, where the elastic step alone would have its
