@@ -209,6 +209,10 @@ private:
   std::unique_ptr<PointGrid> TargetGrid;
 };
 
+// Rigid fits per iteration at most (each matches again): an offset of a few voxels needs
+// about ten.
+constexpr int MaximumRigidRounds = 20;
+
 // Tets that a move would invert or push past the angle bound.
 std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
   double minimumRadians, int threads)
@@ -576,6 +580,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   }
   Eigen::VectorXd du = Eigen::VectorXd::Zero(stiffness.rows());
   Eigen::Isometry3d placement = Eigen::Isometry3d::Identity(); // the rigid moves so far
+  const double negligibleMove = 0.01 * image.Spacing.minCoeff(); // a rigid fit that ends its loop
   for (int iteration = 0; iteration < params.Iterations; ++iteration)
   {
     const double done = 0.1 + 0.9 * double(iteration) / params.Iterations;
@@ -586,31 +591,46 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
 
     // The rigid part of the match first (rotation and translation, Umeyama's least squares):
     // it moves the mesh without straining a tet, where the elastic step alone would have its
-    // strained tets held back by the quality guard.
+    // strained tets held back by the quality guard. Matching again after each move and fitting
+    // again (an ICP loop) until the move is negligible, so that a mesh offset from its image
+    // follows it whole before any elastic step bends it toward half-found matches.
     if (params.RigidAlignment)
     {
-      const std::int64_t count = std::count(matched.begin(), matched.end(), 1);
-      Eigen::Matrix3Xd from(3, count), to(3, count);
-      for (std::int64_t s = 0, i = 0; s < sourceCount; ++s)
+      for (int round = 0; round < MaximumRigidRounds; ++round)
       {
-        if (matched[s])
+        const std::int64_t count = std::count(matched.begin(), matched.end(), 1);
+        if (count < 4)
         {
-          from.col(i) = x[sources.Points[s]];
-          to.col(i++) = goals[s];
+          break;
         }
-      }
-      if (count >= 4)
-      {
+        Eigen::Matrix3Xd from(3, count), to(3, count);
+        for (std::int64_t s = 0, i = 0; s < sourceCount; ++s)
+        {
+          if (matched[s])
+          {
+            from.col(i) = x[sources.Points[s]];
+            to.col(i++) = goals[s];
+          }
+        }
         const Eigen::Isometry3d rigid(Eigen::umeyama(from, to, false));
         std::vector<Eigen::Vector3d> trial(x.size());
+        double largestMove = 0.0;
         for (std::size_t p = 0; p < x.size(); ++p)
         {
           trial[p] = rigid * x[p];
+          largestMove = std::max(largestMove, (trial[p] - x[p]).norm());
         }
-        if (BadTets(out, trial, bound, threads).empty() && fidelity.AcceptIfNoneGrows(trial, keepGoing))
+        if (largestMove < negligibleMove || !BadTets(out, trial, bound, threads).empty() ||
+          !fidelity.AcceptIfNoneGrows(trial, keepGoing))
         {
-          x.swap(trial);
-          placement = rigid * placement;
+          break;
+        }
+        x.swap(trial);
+        placement = rigid * placement;
+        matcher.Match(x, goals, matched);
+        if (stopped(done))
+        {
+          return Status::Aborted();
         }
       }
     }

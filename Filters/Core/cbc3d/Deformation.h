@@ -28,8 +28,9 @@ struct DeformationParams
   /// vertices of such tets keep their place for that step (inverted tets are never made).
   double MinimumDihedralAngle = 20.0;
   /// Each iteration first moves the whole mesh by the rotation and translation that best fit
-  /// the matches (least squares), then deforms it elastically for the rest: a rigid move
-  /// strains no tet, so a mesh shifted from its image follows it whole.
+  /// the matches (least squares), matching again and fitting again until the fit settles, then
+  /// deforms it elastically for the rest: a rigid move strains no tet, so a mesh shifted from
+  /// its image follows it whole.
   bool RigidAlignment = true;
   /// Materials per tissue label; others get DefaultMaterial.
   std::map<std::int32_t, Material> Materials;
