@@ -26,7 +26,8 @@
  * `TissueInvertedTetCount`, `TissueSmallAngleTetCount`, `TissueLargeAngleTetCount`,
  * `TissueMinDihedralAngle`, `TissueMaxDihedralAngle`, `TissueHausdorffDistance`,
  * `TissueMeshToImageDistance`, `TissueImageToMeshDistance`, `TissueHausdorffDistance95`,
- * `TissueMeanSurfaceDistance`.
+ * `TissueMeanSurfaceDistance`, `TissueVolume` (mm^3 in the mesh) and, with an image,
+ * `TissueImageVolume` (mm^3 of its voxels).
  */
 #ifndef vtkCBC3DArrayNames_h
 #define vtkCBC3DArrayNames_h
@@ -67,6 +68,8 @@ constexpr const char* TissueMeshToImageDistance = "TissueMeshToImageDistance";
 constexpr const char* TissueImageToMeshDistance = "TissueImageToMeshDistance";
 constexpr const char* TissueHausdorffDistance95 = "TissueHausdorffDistance95";
 constexpr const char* TissueMeanSurfaceDistance = "TissueMeanSurfaceDistance";
+constexpr const char* TissueVolume = "TissueVolume";
+constexpr const char* TissueImageVolume = "TissueImageVolume";
 constexpr const char* TissueTetCount = "TissueTetCount";
 constexpr const char* TissueMinDihedralAngle = "TissueMinDihedralAngle";
 constexpr const char* TissueMaxDihedralAngle = "TissueMaxDihedralAngle";

@@ -223,7 +223,13 @@ int vtkCBC3DMeshQuality::RequestData(
 
   std::vector<int> tissueLabels;
   std::vector<vtkIdType> tets, inverted, small, large;
-  std::vector<double> minima, maxima, hausdorff, meshToImage, imageToMesh, hausdorff95, mean;
+  std::vector<double> minima, maxima, hausdorff, meshToImage, imageToMesh, hausdorff95, mean, volume, imageVolume;
+  const auto meshVolumes = cbc3d::TissueMeshVolumes(mesh);
+  const auto imageVolumes = withImage ? cbc3d::TissueImageVolumes(image) : std::map<std::int32_t, double>();
+  auto volumeOf = [](const std::map<std::int32_t, double>& volumes, int label) {
+    const auto found = volumes.find(label);
+    return found == volumes.end() ? 0.0 : found->second;
+  };
   double meshHausdorff = rows.empty() ? NaN : 0.0, meshHausdorff95 = meshHausdorff;
   double distanceSum = 0.0;
   std::size_t distanceCount = 0;
@@ -236,6 +242,8 @@ int vtkCBC3DMeshQuality::RequestData(
     large.push_back(row.Angles.LargeAngle);
     minima.push_back(row.Angles.MinDegrees);
     maxima.push_back(row.Angles.MaxDegrees);
+    volume.push_back(volumeOf(meshVolumes, row.Label));
+    imageVolume.push_back(volumeOf(imageVolumes, row.Label));
     const cbc3d::SurfaceDistanceSummary& d = row.Distances;
     hausdorff.push_back(d.Hausdorff);
     meshToImage.push_back(d.AToB);
@@ -255,8 +263,10 @@ int vtkCBC3DMeshQuality::RequestData(
   AddFieldArray<vtkIdTypeArray>(fields, names::TissueLargeAngleTetCount, large);
   AddFieldArray<vtkDoubleArray>(fields, names::TissueMinDihedralAngle, minima);
   AddFieldArray<vtkDoubleArray>(fields, names::TissueMaxDihedralAngle, maxima);
+  AddFieldArray<vtkDoubleArray>(fields, names::TissueVolume, volume);
   if (withImage)
   {
+    AddFieldArray<vtkDoubleArray>(fields, names::TissueImageVolume, imageVolume);
     AddFieldArray<vtkDoubleArray>(fields, names::HausdorffDistance, std::vector<double>{ meshHausdorff });
     AddFieldArray<vtkDoubleArray>(fields, names::HausdorffDistance95, std::vector<double>{ meshHausdorff95 });
     AddFieldArray<vtkDoubleArray>(fields, names::MeanSurfaceDistance,

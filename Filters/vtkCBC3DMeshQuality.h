@@ -24,8 +24,10 @@
  *   maximum over tissues) and `MeanSurfaceDistance` (over all tissues' points) (mm);
  * - field data per tissue, one value per tissue in ascending label order: `TissueLabel`
  *   (vtkIntArray), `TissueTetCount`, `TissueInvertedTetCount`, `TissueSmallAngleTetCount`,
- *   `TissueLargeAngleTetCount`, `TissueMinDihedralAngle`, `TissueMaxDihedralAngle`; with the
- *   image, `TissueHausdorffDistance`, `TissueMeshToImageDistance` and
+ *   `TissueLargeAngleTetCount`, `TissueMinDihedralAngle`, `TissueMaxDihedralAngle`,
+ *   `TissueVolume` (mm^3 of its tets); with the image, `TissueImageVolume` (mm^3 of its voxels:
+ *   a mesh through the boundary voxels' centres is smaller by about half a voxel of depth over
+ *   the tissue's surface), `TissueHausdorffDistance`, `TissueMeshToImageDistance` and
  *   `TissueImageToMeshDistance` (the two one-sided distances), `TissueHausdorffDistance95` (the
  *   larger of the two one-sided 95th percentiles) and `TissueMeanSurfaceDistance` (mm).
  *

@@ -55,6 +55,8 @@ void AddFigures(nlohmann::json& out, const TissueFigures& f)
   out["image_to_mesh_mm"] = Number(f.ImageToMesh);
   out["hausdorff_95_mm"] = Number(f.Hausdorff95);
   out["mean_distance_mm"] = Number(f.MeanDistance);
+  out["volume_mm3"] = Number(f.Volume);
+  out["image_volume_mm3"] = Number(f.ImageVolume);
   if (!std::isnan(f.F1))
   {
     out["fidelity_f1"] = f.F1;
@@ -106,6 +108,8 @@ bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
     read(names::TissueImageToMeshDistance, i, tissue.ImageToMesh);
     read(names::TissueHausdorffDistance95, i, tissue.Hausdorff95);
     read(names::TissueMeanSurfaceDistance, i, tissue.MeanDistance);
+    read(names::TissueVolume, i, tissue.Volume);
+    read(names::TissueImageVolume, i, tissue.ImageVolume);
   }
   if (vtkDataArray* fidelityLabels = Field(mesh, names::FidelityLabel))
   {
@@ -129,11 +133,15 @@ bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
     read(names::DeformationTargets, 0, report.DeformationTargets);
     report.DeformationStopReason = FieldText(mesh, names::DeformationStopReason);
   }
-  // The mesh's one-sided distances are the largest over tissues, like its Hausdorff distance.
+  // The mesh's one-sided distances are the largest over tissues, like its Hausdorff distance;
+  // its volumes are the tissues' sums.
   all.MeshToImage = all.ImageToMesh = report.Tissues.empty() ? all.Hausdorff : 0.0;
+  all.Volume = all.ImageVolume = 0.0;
   for (const auto& entry : report.Tissues)
   {
     const TissueFigures& t = entry.second;
+    all.Volume += t.Volume;
+    all.ImageVolume += t.ImageVolume;
     all.MeshToImage = std::isnan(t.MeshToImage) ? t.MeshToImage : std::max(all.MeshToImage, t.MeshToImage);
     all.ImageToMesh = std::isnan(t.ImageToMesh) ? t.ImageToMesh : std::max(all.ImageToMesh, t.ImageToMesh);
   }
@@ -147,12 +155,12 @@ std::string FormatSummary(const RunReport& report)
   out << "  lattice size " << Fixed(report.BCCSizeUsed, 3) << " mm\n";
   out << "  tetrahedra " << report.Overall.Tets << ", points " << report.Points
       << ", inverted " << report.Overall.Inverted << "\n";
-  out << "  tissue      tets  min dihedral  max dihedral  <10° >170°  Hausdorff mm (95%, mean)\n";
+  out << "  tissue      tets  min dihedral  max dihedral  <10° >170°  Hausdorff mm (95%, mean)  volume / image\n";
   auto row = [&out](const std::string& name, const TissueFigures& f) {
     char line[200];
-    std::snprintf(line, sizeof(line), "  %-6s %9lld  %11.2f°  %11.2f° %5lld %5lld  %8.2f (%.2f, %.2f)\n",
+    std::snprintf(line, sizeof(line), "  %-6s %9lld  %11.2f°  %11.2f° %5lld %5lld  %8.2f (%.2f, %.2f)  %9.1f%%\n",
       name.c_str(), f.Tets, f.MinDihedral, f.MaxDihedral, f.SmallAngle, f.LargeAngle, f.Hausdorff,
-      f.Hausdorff95, f.MeanDistance);
+      f.Hausdorff95, f.MeanDistance, 100.0 * f.Volume / f.ImageVolume);
     out << line;
   };
   for (const auto& [label, figures] : report.Tissues)

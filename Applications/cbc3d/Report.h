@@ -26,6 +26,9 @@ struct TissueFigures
   double ImageToMesh = std::numeric_limits<double>::quiet_NaN();
   double Hausdorff95 = std::numeric_limits<double>::quiet_NaN();
   double MeanDistance = std::numeric_limits<double>::quiet_NaN();
+  // Volumes in mm^3: of the tissue's tets, and of its voxels (NaN without the image).
+  double Volume = std::numeric_limits<double>::quiet_NaN();
+  double ImageVolume = std::numeric_limits<double>::quiet_NaN();
   // Voxel fidelity after refinement (NaN without refinement) and tissue components.
   double F1 = std::numeric_limits<double>::quiet_NaN();
   double F2 = std::numeric_limits<double>::quiet_NaN();

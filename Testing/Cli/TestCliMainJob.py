@@ -45,6 +45,12 @@ with tempfile.TemporaryDirectory() as work:
               "tissue %s: one-sided, 95th percentile and mean distances are consistent" % label)
         check(tissue["tetrahedra_under_10_deg"] == 0 and tissue["tetrahedra_over_170_deg"] == 0,
               "tissue %s: no tets under 10 or over 170 degrees" % label)
+        check(0.8 < tissue["volume_mm3"] / tissue["image_volume_mm3"] < 1.2,
+              "tissue %s: mesh volume %.0f mm3 near the image's %.0f mm3"
+              % (label, tissue["volume_mm3"], tissue["image_volume_mm3"]))
+    for key in ("volume_mm3", "image_volume_mm3"):
+        total = sum(t[key] for t in report["tissues"].values())
+        check(abs(report[key] - total) <= 1e-9 * total, "mesh %s is the tissues' sum" % key)
     check(all(k in report["seconds"] for k in ("read", "lattice", "total")), "seconds per stage")
     # The summary on stdout gives the same figures as the report.
     check("tetrahedra %d, points %d" % (report["tetrahedra"], report["points"]) in result.stdout,

@@ -65,4 +65,35 @@ QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads,
   }
   return summary;
 }
+
+std::map<std::int32_t, double> TissueMeshVolumes(const TetMesh& mesh)
+{
+  std::map<std::int32_t, double> volumes;
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    const Tet& tet = mesh.Tets[t];
+    volumes[mesh.Labels[t]] +=
+      SignedVolume(mesh.Points[tet[0]], mesh.Points[tet[1]], mesh.Points[tet[2]], mesh.Points[tet[3]]);
+  }
+  return volumes;
+}
+
+std::map<std::int32_t, double> TissueImageVolumes(const LabelImage& image)
+{
+  std::map<std::int32_t, std::int64_t> counts;
+  for (const std::int32_t label : image.Labels)
+  {
+    if (image.IsTissue(label))
+    {
+      ++counts[label];
+    }
+  }
+  const double voxelVolume = image.Spacing.prod();
+  std::map<std::int32_t, double> volumes;
+  for (const auto& [label, count] : counts)
+  {
+    volumes[label] = double(count) * voxelVolume;
+  }
+  return volumes;
+}
 } // namespace cbc3d

@@ -1,6 +1,7 @@
 #ifndef cbc3d_Quality_h
 #define cbc3d_Quality_h
 
+#include "cbc3d/LabelImage.h"
 #include "cbc3d/TetMesh.h"
 
 #include <cstdint>
@@ -44,6 +45,12 @@ struct TetDihedralExtremes
 /// `perTet` when given. Deterministic for any thread count (min/max/count are exact).
 QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads = 0,
   TetDihedralExtremes* perTet = nullptr);
+/// Each tissue's volume in the mesh (sum of its tets' signed volumes, mm^3), summed in tet
+/// order so that it is the same on every run.
+std::map<std::int32_t, double> TissueMeshVolumes(const TetMesh& mesh);
+
+/// Each tissue's volume in the image: its voxel count times the voxel volume (mm^3).
+std::map<std::int32_t, double> TissueImageVolumes(const LabelImage& image);
 } // namespace cbc3d
 
 #endif

@@ -1,5 +1,5 @@
 // The quality filter against known answers: angles of a regular tet, a BCC tet and a sliver;
-// the Hausdorff distance of a voxel block meshed at its voxel corners; a lost tissue.
+// the Hausdorff distance and volume of a voxel block meshed at its voxel corners; a lost tissue.
 #include "CBC3DTestUtilities.h"
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DMeshQuality.h"
@@ -138,6 +138,9 @@ void TestBlockHausdorff()
   CHECK(Near(Field(out, vtkCBC3DArrayNames::HausdorffDistance95), expected, 1e-12));
   CHECK(Near(Field(out, vtkCBC3DArrayNames::MeanSurfaceDistance), expected, 1e-12));
   CHECK(Field(out, vtkCBC3DArrayNames::InvertedTetCount) == 0);
+  // Volumes: the mesh is voxel-exact, the block's eight voxels of 0.5 x 1 x 2 mm.
+  CHECK(Near(Field(out, vtkCBC3DArrayNames::TissueVolume), 8.0, 1e-12));
+  CHECK(Near(Field(out, vtkCBC3DArrayNames::TissueImageVolume), 8.0, 1e-12));
 
   // Shift the mesh by 0.1 mm along x: the corners on the +x side are then farther.
   vtkPoints* points = mesh->GetPoints();
@@ -165,6 +168,8 @@ void TestBlockHausdorff()
   CHECK(std::isnan(Field(out, vtkCBC3DArrayNames::TissueHausdorffDistance, 1)));
   CHECK(std::isnan(Field(out, vtkCBC3DArrayNames::HausdorffDistance)));
   CHECK(Near(Field(out, vtkCBC3DArrayNames::TissueHausdorffDistance, 0), shifted, 1e-12));
+  CHECK(Field(out, vtkCBC3DArrayNames::TissueVolume, 1) == 0.0);
+  CHECK(Near(Field(out, vtkCBC3DArrayNames::TissueImageVolume, 1), 1.0, 1e-12));
   CHECK(warnings->Text.find("tissue 7 is in the image but not in the mesh") != std::string::npos);
 }
 
