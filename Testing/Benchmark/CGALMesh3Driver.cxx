@@ -160,7 +160,7 @@ int main(int argc, char* argv[])
     f->GetArray("HausdorffDistance")->GetTuple1(0), f->GetArray("HausdorffDistance95")->GetTuple1(0),
     f->GetArray("MeanSurfaceDistance")->GetTuple1(0), seconds);
   // One JSON line for the benchmark script, with the keys of cbc3d's --report, the mesh's
-  // figures and each tissue's Hausdorff distances.
+  // figures and each tissue's Hausdorff distances and volumes.
   namespace names = vtkCBC3DArrayNames;
   auto value = [f](const char* name, vtkIdType i) { return f->GetArray(name)->GetTuple1(i); };
   char text[512];
@@ -175,10 +175,12 @@ int main(int argc, char* argv[])
   for (vtkIdType i = 0; i < tissues; ++i)
   {
     std::snprintf(text, sizeof(text),
-      "%s\"%d\": {\"tetrahedra\": %lld, \"hausdorff_mm\": %.6f, \"hausdorff_95_mm\": %.6f, \"mean_distance_mm\": %.6f}",
+      "%s\"%d\": {\"tetrahedra\": %lld, \"hausdorff_mm\": %.6f, \"hausdorff_95_mm\": %.6f, \"mean_distance_mm\": %.6f, "
+      "\"volume_mm3\": %.6f, \"image_volume_mm3\": %.6f}",
       i ? ", " : "", static_cast<int>(value(names::TissueLabel, i)),
       static_cast<long long>(value(names::TissueTetCount, i)), value(names::TissueHausdorffDistance, i),
-      value(names::TissueHausdorffDistance95, i), value(names::TissueMeanSurfaceDistance, i));
+      value(names::TissueHausdorffDistance95, i), value(names::TissueMeanSurfaceDistance, i),
+      value(names::TissueVolume, i), value(names::TissueImageVolume, i));
     json += text;
   }
   std::printf("%s}}\n", json.c_str());

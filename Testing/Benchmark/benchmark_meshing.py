@@ -225,26 +225,31 @@ def print_stages(results):
     print_table(["image"] + list(STAGES) + ["total", "peak MB"], rows)
 
 
+def volume_text(t):
+    """The tissue's mesh volume as a share of its voxels' volume."""
+    return "%.1f%%" % (100.0 * t["volume_mm3"] / t["image_volume_mm3"]) if t and "volume_mm3" in t else "-"
+
+
 def print_tissues(results):
-    """HD per tissue: cbc3d, CGAL deterministic, CGAL default (each run)."""
+    """HD and volume per tissue: cbc3d, CGAL deterministic, CGAL default (each run)."""
     rows = []
     for name, entry in results.items():
         ours = entry["cbc3d"]
         if "error" in ours:
             continue
         for label, t in ours["tissues"].items():
-            row = [name, label, "%d" % t["tetrahedra"], hd_text(t),
+            row = [name, label, "%d" % t["tetrahedra"], hd_text(t), volume_text(t),
                    "%.3f / %.3f" % (t.get("fidelity_f1", float("nan")), t.get("fidelity_f2", float("nan")))]
             if "cgal_deterministic" in entry:
                 exact = entry["cgal_deterministic"].get("tissues", {}).get(label)
                 defaults = [c.get("tissues", {}).get(label) for c in entry["cgal_default"]]
                 row += ["%d" % exact["tetrahedra"] if exact else "-", hd_text(exact) if exact else "-",
-                        ", ".join("%.2f" % c["hausdorff_mm"] if c else "-" for c in defaults)]
+                        volume_text(exact), ", ".join("%.2f" % c["hausdorff_mm"] if c else "-" for c in defaults)]
             rows.append(row)
-    header = ["image", "tissue", "cbc3d tets", "cbc3d HD mm (95%, mean)", "cbc3d F1 / F2"]
+    header = ["image", "tissue", "cbc3d tets", "cbc3d HD mm (95%, mean)", "cbc3d volume / image", "cbc3d F1 / F2"]
     if any("cgal_deterministic" in entry for entry in results.values()):
-        header += ["CGAL tets", "CGAL no time limits HD mm (95%, mean)", "CGAL default HD mm"]
-    print("Hausdorff distance per tissue (a tissue CGAL lost is '-'):")
+        header += ["CGAL tets", "CGAL no time limits HD mm (95%, mean)", "CGAL volume / image", "CGAL default HD mm"]
+    print("Hausdorff distance and volume (mesh / voxels) per tissue (a tissue CGAL lost is '-'):")
     print()
     print_table(header, rows)
 
