@@ -32,6 +32,11 @@ const char* vtkCBC3DDeformation::GetPatternAsString() const
   return names[this->Pattern];
 }
 
+const char* vtkCBC3DDeformation::GetTargetPlacementAsString() const
+{
+  return this->TargetPlacement == VOXEL_FACE ? "VoxelFace" : "VoxelCentre";
+}
+
 void vtkCBC3DDeformation::SetTissueYoungModulus(int label, double modulus)
 {
   this->YoungModuli[label] = modulus;
@@ -74,6 +79,8 @@ int vtkCBC3DDeformation::RequestData(
   cbc3d::DeformationParams params;
   params.Iterations = this->Iterations;
   params.Pattern = static_cast<cbc3d::TargetPattern>(this->Pattern);
+  params.Placement = this->TargetPlacement == VOXEL_FACE ? cbc3d::TargetPlacement::VoxelFace
+                                                         : cbc3d::TargetPlacement::VoxelCentre;
   params.Penalty = this->Penalty;
   params.MinimumDihedralAngle = this->MinimumDihedralAngle;
   params.RigidAlignment = this->RigidAlignment;
@@ -137,6 +144,7 @@ void vtkCBC3DDeformation::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Iterations: " << this->Iterations << "\n";
   os << indent << "Pattern: " << this->GetPatternAsString() << "\n";
+  os << indent << "TargetPlacement: " << this->GetTargetPlacementAsString() << "\n";
   os << indent << "Penalty: " << this->Penalty << "\n";
   os << indent << "MinimumDihedralAngle: " << this->MinimumDihedralAngle << " degrees\n";
   os << indent << "RigidAlignment: " << (this->RigidAlignment ? "on" : "off") << "\n";

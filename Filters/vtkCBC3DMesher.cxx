@@ -69,6 +69,7 @@ int vtkCBC3DMesher::RequestData(
   refinement->SetBoundaryDistance(this->BoundaryDistance);
   deformation->SetIterations(this->Iterations);
   deformation->SetPattern(this->Pattern);
+  deformation->SetTargetPlacement(this->TargetPlacement);
   vtkInformation* arrayRequest = this->GetInputArrayInformation(0);
   const char* arrayName = arrayRequest && arrayRequest->Has(vtkDataObject::FIELD_NAME())
     ? arrayRequest->Get(vtkDataObject::FIELD_NAME())
@@ -159,4 +160,5 @@ void vtkCBC3DMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BoundaryDistance: " << this->BoundaryDistance << " mm\n";
   os << indent << "Iterations: " << this->Iterations << "\n";
   os << indent << "Pattern: " << this->Pattern << "\n";
+  os << indent << "TargetPlacement: " << this->TargetPlacement << "\n";
 }

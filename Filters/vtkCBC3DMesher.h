@@ -60,6 +60,15 @@ public:
   vtkGetMacro(Pattern, int);
   ///@}
 
+  ///@{
+  /**
+   * Deformation targets at boundary voxel centres (0, default) or on the label boundary (1);
+   * see vtkCBC3DDeformation::TargetPlacement.
+   */
+  vtkSetClampMacro(TargetPlacement, int, 0, 1);
+  vtkGetMacro(TargetPlacement, int);
+  ///@}
+
 protected:
   vtkCBC3DMesher() = default;
   ~vtkCBC3DMesher() override = default;
@@ -72,6 +81,7 @@ protected:
   double BoundaryDistance = 0.0;
   int Iterations = 5;
   int Pattern = 1;
+  int TargetPlacement = 0;
 
 private:
   vtkCBC3DMesher(const vtkCBC3DMesher&) = delete;

@@ -194,6 +194,8 @@ int Run(int argc, char* argv[])
     deformation->SetImageData(image);
     deformation->SetIterations(options.Iterations);
     deformation->SetPattern(PatternValue(options.Pattern));
+    deformation->SetTargetPlacement(
+      options.Targets == "face" ? vtkCBC3DDeformation::VOXEL_FACE : vtkCBC3DDeformation::VOXEL_CENTRE);
     SetBackground(deformation, options);
     deformation->SetNumberOfThreads(options.Threads);
     if (!RunStage(deformation, "deformation", showProgress, report, error))

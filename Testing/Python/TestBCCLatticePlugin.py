@@ -110,6 +110,10 @@ for name in ("Vertex", "Edge", "Face", "None"):
     deformed.Pattern = name
     check("Pattern: " + name in str(deformed.GetClientSideObject()), "Pattern %s reaches the filter" % name)
 deformed.Pattern = "Edge"
+for name, printed in (("Voxel Face", "VoxelFace"), ("Voxel Centre", "VoxelCentre")):
+    deformed.TargetPlacement = name
+    check("TargetPlacement: " + printed in str(deformed.GetClientSideObject()),
+          "TargetPlacement %s reaches the filter" % name)
 deformed.Iterations = 3
 deformed.UpdatePipeline()
 moved = servermanager.Fetch(deformed)
@@ -128,5 +132,10 @@ check(final.GetNumberOfCells() > 0 and fields.GetArray("InvertedTetCount").GetVa
 check(fields.GetArray("HausdorffDistance") is not None and fields.GetArray("FidelityF1") is not None, "one-shot figures")
 check([p.GetXMLLabel() for p in [oneshot.GetProperty(n) for n in ("LatticeSize", "Fidelity", "Iterations")]] ==
       ["Lattice Size", "Fidelity", "Deformation Iterations"], "one-shot property labels")
+oneshot.TargetPlacement = "Voxel Face"
+check("TargetPlacement: 1" in str(oneshot.GetClientSideObject()), "one-shot TargetPlacement reaches the filter")
+oneshot.UpdatePipeline()
+check(servermanager.Fetch(oneshot).GetFieldData().GetArray("InvertedTetCount").GetValue(0) == 0,
+      "one-shot mesh with targets on the label boundary, no inverted tet")
 
 check.finish()

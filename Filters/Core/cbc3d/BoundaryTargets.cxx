@@ -29,7 +29,8 @@ std::vector<std::array<int, 3>> BlockedOffsets(TargetPattern pattern)
 }
 } // namespace
 
-std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetPattern pattern)
+std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetPattern pattern,
+  TargetPlacement placement)
 {
   const auto& d = image.Dimensions;
   const auto blocked = BlockedOffsets(pattern);
@@ -57,10 +58,17 @@ std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetP
             continue;
           }
           LabelSet labels = { tissue };
+          Eigen::Vector3d toward = Eigen::Vector3d::Zero(); // sum of steps to other labels
+          int others = 0;
           const int faces[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
           for (const auto& f : faces)
           {
             const std::int32_t other = labelOf(i + f[0], j + f[1], k + f[2]);
+            if (other != tissue)
+            {
+              toward += Eigen::Vector3d(f[0], f[1], f[2]);
+              ++others;
+            }
             if (std::find(labels.begin(), labels.end(), other) == labels.end())
             {
               labels.push_back(other);
@@ -76,7 +84,12 @@ std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetP
             continue; // this interface was sampled from an earlier tissue's side
           }
           thisTissue.insert(labels);
-          targets.push_back({ image.IndexToWorld(Eigen::Vector3d(i, j, k)), labels });
+          Eigen::Vector3d index(i, j, k);
+          if (placement == TargetPlacement::VoxelFace)
+          {
+            index += 0.5 * toward / double(others);
+          }
+          targets.push_back({ image.IndexToWorld(index), labels });
           for (const auto& o : blocked)
           {
             const int ni = i + o[0], nj = j + o[1], nk = k + o[2];

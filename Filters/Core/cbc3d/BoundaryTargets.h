@@ -28,9 +28,19 @@ enum class TargetPattern
   None
 };
 
+/// Where a target sits in its voxel: at the centre (the paper's, and the points its Hausdorff
+/// distance measures to), or moved half a voxel towards its face-neighbours of other labels,
+/// onto the label boundary itself (meshes then keep their tissues' volumes; see
+/// FindBoundaryTargets).
+enum class TargetPlacement
+{
+  VoxelCentre,
+  VoxelFace
+};
+
 struct BoundaryTarget
 {
-  Eigen::Vector3d Position; // the voxel centre, world
+  Eigen::Vector3d Position; // world: the voxel centre, or the label boundary by it
   LabelSet Labels;          // its label and its face-neighbours' (OutsideLabel for background)
 };
 
@@ -38,8 +48,11 @@ struct BoundaryTarget
 /// (the image border counts as outside). Tissues are scanned in ascending label order, each
 /// in x-fastest order; a target whose label-set an earlier tissue already produced is skipped,
 /// so each interface is sampled from one side. After a voxel is taken, its neighbours under the
-/// pattern are not taken.
-std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetPattern pattern);
+/// pattern are not taken. With VoxelFace placement each target moves from its voxel's centre by
+/// half the mean of the unit steps to its face-neighbours of other labels: onto the shared face
+/// when there is one such neighbour.
+std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetPattern pattern,
+  TargetPlacement placement = TargetPlacement::VoxelCentre);
 } // namespace cbc3d
 
 #endif

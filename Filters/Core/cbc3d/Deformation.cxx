@@ -530,7 +530,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   {
     return Status::Aborted();
   }
-  const std::vector<BoundaryTarget> targets = FindBoundaryTargets(image, params.Pattern);
+  const std::vector<BoundaryTarget> targets = FindBoundaryTargets(image, params.Pattern, params.Placement);
   if (stopped(0.04))
   {
     return Status::Aborted();

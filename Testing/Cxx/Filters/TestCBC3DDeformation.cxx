@@ -71,6 +71,9 @@ int TestCBC3DDeformation(int, char*[])
   deformation->Print(printed);
   CHECK(printed.str().find("Pattern: Face") != std::string::npos);
   CHECK(std::string(deformation->GetPatternAsString()) == "Face");
+  CHECK(printed.str().find("TargetPlacement: VoxelCentre") != std::string::npos);
+  deformation->SetTargetPlacementToVoxelFace();
+  CHECK(std::string(deformation->GetTargetPlacementAsString()) == "VoxelFace");
 
   vtkNew<cbc3dtest::MessageCatcher> errors;
   deformation->AddObserver(vtkCommand::ErrorEvent, errors);
