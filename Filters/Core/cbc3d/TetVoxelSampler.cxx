@@ -150,11 +150,14 @@ std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int s
   std::array<std::int64_t, 3> first, last;
   for (int a = 0; a < 3; ++a)
   {
-    const double lo = std::max(tet.Lower[a], -0.5);
-    const double hi = std::min(tet.Upper[a], image.Dimensions[a] - 0.5);
-    first[a] = static_cast<std::int64_t>(std::ceil((lo - offset) / step - 1e-9));
-    last[a] = static_cast<std::int64_t>(std::floor((hi - offset) / step + 1e-9));
+    first[a] = static_cast<std::int64_t>(std::ceil((tet.Lower[a] - offset) / step - 1e-9));
+    last[a] = static_cast<std::int64_t>(std::floor((tet.Upper[a] - offset) / step + 1e-9));
   }
+  // Beyond the image is background, as the image border is for boundary voxels: a tet that
+  // reaches out of a field of view that cuts the tissue counts what lies outside.
+  const bool outsideCounts = !image.BackgroundLabels.empty();
+  const std::int32_t outside = outsideCounts ? image.BackgroundLabels.front() : 0;
+  auto inImage = [&](double x, int a) { return x >= -0.5 && x < image.Dimensions[a] - 0.5; };
   std::int64_t samples = 0;
   Eigen::Vector3d point;
   for (std::int64_t k = first[2]; k <= last[2]; ++k)
@@ -172,6 +175,15 @@ std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int s
         point[0] = offset + i * step;
         if (!tet.Contains(b))
         {
+          continue;
+        }
+        if (!(inImage(point[0], 0) && inImage(point[1], 1) && inImage(point[2], 2)))
+        {
+          if (outsideCounts)
+          {
+            counts.Add(outside, weight);
+            ++samples;
+          }
           continue;
         }
         const int vi = std::clamp(static_cast<int>(std::lround(point[0])), 0, image.Dimensions[0] - 1);

@@ -1,5 +1,6 @@
 #include "cbc3d/TetVoxelSampler.h"
 
+#include <Eigen/LU>
 #include <gtest/gtest.h>
 
 #include "TestImages.h"
@@ -84,4 +85,40 @@ TEST(TetVoxelSampler, MajorityTieGoesToTissueOverBackground)
   counts.Add(0);
   ASSERT_TRUE(counts.Majority(image, label)); // a strict majority of background still wins
   EXPECT_EQ(label, 0);
+}
+
+TEST(TetVoxelSampler, BeyondTheImageCountsAsBackground)
+{
+  // An image of tissue 7 (voxel centres 0..7, so its box ends at 7.5) and a tet that reaches
+  // past x = 7.5: its points inside the image count as tissue, those beyond as background 0.
+  // The answer is counted here by brute force (no lattice point lies on the tet's faces).
+  const cbc3d::LabelImage image = Cube(8, 7);
+  const std::array<Eigen::Vector3d, 4> corners = { Eigen::Vector3d(4.1, 1.05, 1.1),
+    Eigen::Vector3d(12.1, 1.05, 1.1), Eigen::Vector3d(4.1, 7.05, 1.1), Eigen::Vector3d(4.1, 1.05, 7.1) };
+  Eigen::Matrix3d edges;
+  edges << corners[1] - corners[0], corners[2] - corners[0], corners[3] - corners[0];
+  const Eigen::Matrix3d toBarycentric = edges.inverse();
+  std::int64_t inside = 0, beyond = 0;
+  for (int k = 0; k < 16; ++k)
+    for (int j = 0; j < 16; ++j)
+      for (int i = 0; i < 16; ++i)
+      {
+        const Eigen::Vector3d b = toBarycentric * (Eigen::Vector3d(i, j, k) - corners[0]);
+        if (b.minCoeff() > 0.0 && b.sum() < 1.0)
+          ++(i <= 7 ? inside : beyond);
+      }
+  ASSERT_GT(inside, 0);
+  ASSERT_GT(beyond, 0);
+  cbc3d::LabelCounts counts;
+  EXPECT_EQ(cbc3d::SampleTetLabels(image, corners, counts), 1);
+  EXPECT_EQ(counts.Of(7), inside * cbc3d::VoxelWeight);
+  EXPECT_EQ(counts.Of(0), beyond * cbc3d::VoxelWeight);
+
+  // A tet wholly beyond the image holds only background.
+  const Eigen::Vector3d away(20.0, 0.0, 0.0);
+  EXPECT_EQ(cbc3d::SampleTetLabels(image, { corners[0] + away, corners[1] + away, corners[2] + away, corners[3] + away }, counts), 1);
+  std::int32_t label = -1;
+  EXPECT_TRUE(counts.Majority(image, label));
+  EXPECT_EQ(label, 0);
+  EXPECT_EQ(counts.TissueTotal(image), 0);
 }
