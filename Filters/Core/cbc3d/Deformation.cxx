@@ -302,11 +302,20 @@ public:
         }
       }
       const Snapshot after(tissue.Vertices, trial, this->Cell);
+      const Snapshot& current = *tissue.Current;
       const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Voxels.size());
 #pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
       for (std::int64_t i = 0; i < voxelCount; ++i)
       {
         const Eigen::Vector3d& voxel = tissue.Voxels[i];
+        // Still within the limit of its nearest vertex after that vertex's move: covered,
+        // with no search (most voxels, as most moves are short).
+        const int nearest = current.NearestVertex[i];
+        const Eigen::Vector3d& was = current.Points[nearest];
+        if ((voxel - was).norm() + (trial[tissue.Vertices[nearest]] - was).norm() <= limit)
+        {
+          continue;
+        }
         if (after.Grid->Nearest(voxel, limit) < 0)
         {
           const int covering = tissue.Current->Grid->Nearest(voxel, limit);
@@ -373,45 +382,44 @@ public:
     }
   }
 
-  /// The boundary voxel of tissue `label` nearest to x within `radius`; null if none.
-  const Eigen::Vector3d* NearestVoxel(std::int32_t label, const Eigen::Vector3d& x, double radius) const
+  /// Goals for the vertices that set a tissue's Hausdorff distance, at the accepted positions:
+  /// the farthest of the boundary voxels whose nearest vertex of the tissue a point is, and of
+  /// the point's nearest boundary voxel of each of its tissues (when within `search[point]`),
+  /// if farther than `reach[point]`. `steered[point]` is 0 where there is none.
+  void Steer(const std::vector<double>& reach, const std::vector<double>& search,
+    std::vector<Eigen::Vector3d>& goal, std::vector<char>& steered) const
   {
-    for (const Tissue& tissue : this->Tissues)
-    {
-      if (tissue.Label == label)
+    goal.assign(reach.size(), Eigen::Vector3d::Zero());
+    steered.assign(reach.size(), 0);
+    std::vector<double> farthest(reach);
+    auto offer = [&](PointId v, const Eigen::Vector3d& voxel, double d) {
+      if (d > farthest[v])
       {
-        const int nearest = tissue.Grid->Nearest(x, radius);
-        return nearest < 0 ? nullptr : &tissue.Voxels[nearest];
+        farthest[v] = d;
+        goal[v] = voxel;
+        steered[v] = 1;
+      }
+    };
+    for (const Tissue& tissue : this->Tissues) // voxels far from every vertex first
+    {
+      const Snapshot& current = *tissue.Current;
+      for (std::size_t i = 0; i < tissue.Voxels.size(); ++i)
+      {
+        const int nearest = current.NearestVertex[i];
+        offer(tissue.Vertices[nearest], tissue.Voxels[i], (tissue.Voxels[i] - current.Points[nearest]).norm());
       }
     }
-    return nullptr;
-  }
-
-  /// For each point, the farthest boundary voxel (of any tissue) whose nearest surface vertex
-  /// of that tissue, at the accepted positions, it is, when that voxel lies farther than
-  /// `reach[point]`; the voxel distances are returned in `distance` (0 where none).
-  void FarthestUncovered(const std::vector<double>& reach, std::vector<Eigen::Vector3d>& voxel,
-    std::vector<double>& distance) const
-  {
-    voxel.assign(reach.size(), Eigen::Vector3d::Zero());
-    distance.assign(reach.size(), 0.0);
-    for (const Tissue& tissue : this->Tissues)
+    for (const Tissue& tissue : this->Tissues) // then vertices far from every voxel
     {
-      const std::int64_t count = static_cast<std::int64_t>(tissue.Voxels.size());
-      std::vector<int> nearest(count);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
-      for (std::int64_t i = 0; i < count; ++i)
+      const Snapshot& current = *tissue.Current;
+      for (std::size_t i = 0; i < tissue.Vertices.size(); ++i)
       {
-        nearest[i] = tissue.Current->Grid->NearestAny(tissue.Voxels[i]);
-      }
-      for (std::int64_t i = 0; i < count; ++i)
-      {
-        const PointId v = tissue.Vertices[nearest[i]];
-        const double d = (tissue.Voxels[i] - tissue.Current->Points[nearest[i]]).norm();
-        if (d > reach[v] && d > distance[v])
+        const PointId v = tissue.Vertices[i];
+        const Eigen::Vector3d& voxel = tissue.Voxels[current.NearestVoxel[i]];
+        const double d = (voxel - current.Points[i]).norm();
+        if (d < search[v])
         {
-          distance[v] = d;
-          voxel[v] = tissue.Voxels[i];
+          offer(v, voxel, d);
         }
       }
     }
@@ -435,6 +443,8 @@ private:
 
     std::vector<Eigen::Vector3d> Points;
     std::unique_ptr<PointGrid> Grid;
+    std::vector<int> NearestVertex; // per boundary voxel of the tissue, once measured
+    std::vector<int> NearestVoxel;  // per vertex, once measured
   };
 
   struct Tissue
@@ -447,22 +457,31 @@ private:
     std::unique_ptr<Snapshot> Current;      // the vertices at the accepted positions
   };
 
-  // Two-sided distance between the tissue's boundary voxels and its vertices at `at`.
-  double Measure(const Tissue& tissue, const Snapshot& at) const
+  // Two-sided distance between the tissue's boundary voxels and its vertices at `at`; keeps
+  // each voxel's nearest vertex and each vertex's nearest voxel in `at` (Steer reads them).
+  double Measure(const Tissue& tissue, Snapshot& at) const
   {
-    auto farthest = [this](const std::vector<Eigen::Vector3d>& from, const PointGrid& to,
-                      const std::vector<Eigen::Vector3d>& toPoints) {
-      double worst = 0.0; // a max reduction is exact: the same for any thread count
-      const std::int64_t count = static_cast<std::int64_t>(from.size());
-#pragma omp parallel for schedule(dynamic, 256) reduction(max : worst) num_threads(ThreadCount(this->Threads))
-      for (std::int64_t i = 0; i < count; ++i)
-      {
-        const int nearest = to.NearestAny(from[i]);
-        worst = std::max(worst, nearest < 0 ? 0.0 : (toPoints[nearest] - from[i]).norm());
-      }
-      return worst;
-    };
-    return std::max(farthest(at.Points, *tissue.Grid, tissue.Voxels), farthest(tissue.Voxels, *at.Grid, at.Points));
+    // Max reductions are exact: the same for any thread count.
+    double meshToImage = 0.0, imageToMesh = 0.0;
+    const std::int64_t vertexCount = static_cast<std::int64_t>(at.Points.size());
+    at.NearestVoxel.resize(vertexCount);
+#pragma omp parallel for schedule(dynamic, 256) reduction(max : meshToImage) num_threads(ThreadCount(this->Threads))
+    for (std::int64_t i = 0; i < vertexCount; ++i)
+    {
+      const int nearest = tissue.Grid->NearestAny(at.Points[i]);
+      at.NearestVoxel[i] = nearest;
+      meshToImage = std::max(meshToImage, nearest < 0 ? 0.0 : (tissue.Voxels[nearest] - at.Points[i]).norm());
+    }
+    const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Voxels.size());
+    at.NearestVertex.resize(voxelCount);
+#pragma omp parallel for schedule(dynamic, 256) reduction(max : imageToMesh) num_threads(ThreadCount(this->Threads))
+    for (std::int64_t i = 0; i < voxelCount; ++i)
+    {
+      const int nearest = at.Grid->NearestAny(tissue.Voxels[i]);
+      at.NearestVertex[i] = nearest;
+      imageToMesh = std::max(imageToMesh, nearest < 0 ? 0.0 : (at.Points[nearest] - tissue.Voxels[i]).norm());
+    }
+    return std::max(meshToImage, imageToMesh);
   }
 
   double Cell;
@@ -568,10 +587,12 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   cg.setMaxIterations(50); // per call: the solve runs in chunks so that a stop is seen soon
   std::vector<Eigen::Vector3d>& x = out.Points;
   const InteriorSmoothing smoothing(mesh.Tets, x.size());
-  std::vector<double> reach(x.size()); // how far from the image a vertex may lie unchased
+  // How far from the image a vertex may lie before it is steered, and how far it looks.
+  std::vector<double> reach(x.size()), search(x.size());
   for (std::size_t p = 0; p < x.size(); ++p)
   {
     reach[p] = 0.5 * sources.LocalSize[p];
+    search[p] = 3.0 * sources.LocalSize[p];
   }
   std::vector<char> interior(x.size(), 1);
   for (const PointId p : sources.Points)
@@ -639,30 +660,15 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     // (after the rigid move, which they do not steer): a vertex farther than half its element
     // size from the boundary voxels of one of its tissues, or nearest to a boundary voxel
     // farther than that, heads for that voxel.
-    std::vector<Eigen::Vector3d> uncovered;
-    std::vector<double> uncoveredDistance;
-    fidelity.FarthestUncovered(reach, uncovered, uncoveredDistance);
-#pragma omp parallel for schedule(dynamic, 64) num_threads(ThreadCount(threads))
+    std::vector<Eigen::Vector3d> steeredGoal;
+    std::vector<char> steered;
+    fidelity.Steer(reach, search, steeredGoal, steered);
     for (std::int64_t s = 0; s < sourceCount; ++s)
     {
-      const PointId p = sources.Points[s];
-      double worst = reach[p];
-      if (uncoveredDistance[p] > worst)
+      if (steered[sources.Points[s]])
       {
-        worst = uncoveredDistance[p];
-        goals[s] = uncovered[p];
+        goals[s] = steeredGoal[sources.Points[s]];
         matched[s] = 1;
-      }
-      for (const std::int32_t label : sources.Labels[s])
-      {
-        const Eigen::Vector3d* voxel =
-          label == OutsideLabel ? nullptr : fidelity.NearestVoxel(label, x[p], 3.0 * sources.LocalSize[p]);
-        if (voxel && (*voxel - x[p]).norm() > worst)
-        {
-          worst = (*voxel - x[p]).norm();
-          goals[s] = *voxel;
-          matched[s] = 1;
-        }
       }
     }
 
