@@ -461,27 +461,23 @@ private:
   // each voxel's nearest vertex and each vertex's nearest voxel in `at` (Steer reads them).
   double Measure(const Tissue& tissue, Snapshot& at) const
   {
-    // Max reductions are exact: the same for any thread count.
-    double meshToImage = 0.0, imageToMesh = 0.0;
-    const std::int64_t vertexCount = static_cast<std::int64_t>(at.Points.size());
-    at.NearestVoxel.resize(vertexCount);
-#pragma omp parallel for schedule(dynamic, 256) reduction(max : meshToImage) num_threads(ThreadCount(this->Threads))
-    for (std::int64_t i = 0; i < vertexCount; ++i)
-    {
-      const int nearest = tissue.Grid->NearestAny(at.Points[i]);
-      at.NearestVoxel[i] = nearest;
-      meshToImage = std::max(meshToImage, nearest < 0 ? 0.0 : (tissue.Voxels[nearest] - at.Points[i]).norm());
-    }
-    const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Voxels.size());
-    at.NearestVertex.resize(voxelCount);
-#pragma omp parallel for schedule(dynamic, 256) reduction(max : imageToMesh) num_threads(ThreadCount(this->Threads))
-    for (std::int64_t i = 0; i < voxelCount; ++i)
-    {
-      const int nearest = at.Grid->NearestAny(tissue.Voxels[i]);
-      at.NearestVertex[i] = nearest;
-      imageToMesh = std::max(imageToMesh, nearest < 0 ? 0.0 : (at.Points[nearest] - tissue.Voxels[i]).norm());
-    }
-    return std::max(meshToImage, imageToMesh);
+    // The farthest of `from` from `to`, keeping each one's nearest; a max reduction is exact:
+    // the same for any thread count.
+    auto farthest = [this](const std::vector<Eigen::Vector3d>& from, const PointGrid& to,
+                      const std::vector<Eigen::Vector3d>& toPoints, std::vector<int>& nearest) {
+      double worst = 0.0;
+      const std::int64_t count = static_cast<std::int64_t>(from.size());
+      nearest.resize(count);
+#pragma omp parallel for schedule(dynamic, 256) reduction(max : worst) num_threads(ThreadCount(this->Threads))
+      for (std::int64_t i = 0; i < count; ++i)
+      {
+        nearest[i] = to.NearestAny(from[i]);
+        worst = std::max(worst, nearest[i] < 0 ? 0.0 : (toPoints[nearest[i]] - from[i]).norm());
+      }
+      return worst;
+    };
+    return std::max(farthest(at.Points, *tissue.Grid, tissue.Voxels, at.NearestVoxel),
+      farthest(tissue.Voxels, *at.Grid, at.Points, at.NearestVertex));
   }
 
   double Cell;
