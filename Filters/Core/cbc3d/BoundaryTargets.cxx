@@ -29,6 +29,35 @@ std::vector<std::array<int, 3>> BlockedOffsets(TargetPattern pattern)
 }
 } // namespace
 
+Eigen::Vector3d TargetPosition(const LabelImage& image, std::int64_t voxel, TargetPlacement placement)
+{
+  const auto& d = image.Dimensions;
+  const std::int64_t row = d[0], slice = row * d[1];
+  const int i = int(voxel % row), j = int((voxel / row) % d[1]), k = int(voxel / slice);
+  Eigen::Vector3d index(i, j, k);
+  if (placement == TargetPlacement::VoxelFace)
+  {
+    const std::int32_t label = image.Labels[voxel];
+    Eigen::Vector3d toward = Eigen::Vector3d::Zero(); // the sum of steps to other labels
+    int others = 0;
+    const int faces[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
+    for (const auto& f : faces)
+    {
+      const int a = i + f[0], b = j + f[1], c = k + f[2];
+      if (a < 0 || b < 0 || c < 0 || a >= d[0] || b >= d[1] || c >= d[2] || image.LabelAt(a, b, c) != label)
+      {
+        toward += Eigen::Vector3d(f[0], f[1], f[2]);
+        ++others;
+      }
+    }
+    if (others > 0)
+    {
+      index += 0.5 * toward / double(others);
+    }
+  }
+  return image.IndexToWorld(index);
+}
+
 std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetPattern pattern,
   TargetPlacement placement)
 {
@@ -58,17 +87,10 @@ std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetP
             continue;
           }
           LabelSet labels = { tissue };
-          Eigen::Vector3d toward = Eigen::Vector3d::Zero(); // sum of steps to other labels
-          int others = 0;
           const int faces[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
           for (const auto& f : faces)
           {
             const std::int32_t other = labelOf(i + f[0], j + f[1], k + f[2]);
-            if (other != tissue)
-            {
-              toward += Eigen::Vector3d(f[0], f[1], f[2]);
-              ++others;
-            }
             if (std::find(labels.begin(), labels.end(), other) == labels.end())
             {
               labels.push_back(other);
@@ -84,12 +106,7 @@ std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetP
             continue; // this interface was sampled from an earlier tissue's side
           }
           thisTissue.insert(labels);
-          Eigen::Vector3d index(i, j, k);
-          if (placement == TargetPlacement::VoxelFace)
-          {
-            index += 0.5 * toward / double(others);
-          }
-          targets.push_back({ image.IndexToWorld(index), labels });
+          targets.push_back({ TargetPosition(image, voxel, placement), labels });
           for (const auto& o : blocked)
           {
             const int ni = i + o[0], nj = j + o[1], nk = k + o[2];

@@ -44,13 +44,17 @@ struct BoundaryTarget
   LabelSet Labels;          // its label and its face-neighbours' (OutsideLabel for background)
 };
 
+/// Where the target of a boundary voxel (a linear voxel index) sits, in world coordinates: its
+/// centre, or with VoxelFace placement the centre moved by half the mean of the unit steps to
+/// its face-neighbours of other labels (the image border counting as other): onto the shared
+/// face when there is one such neighbour.
+Eigen::Vector3d TargetPosition(const LabelImage& image, std::int64_t voxel, TargetPlacement placement);
+
 /// The registration targets: centres of tissue voxels with a face-neighbour of another label
 /// (the image border counts as outside). Tissues are scanned in ascending label order, each
 /// in x-fastest order; a target whose label-set an earlier tissue already produced is skipped,
 /// so each interface is sampled from one side. After a voxel is taken, its neighbours under the
-/// pattern are not taken. With VoxelFace placement each target moves from its voxel's centre by
-/// half the mean of the unit steps to its face-neighbours of other labels: onto the shared face
-/// when there is one such neighbour.
+/// pattern are not taken. Each sits at TargetPosition.
 std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetPattern pattern,
   TargetPlacement placement = TargetPlacement::VoxelCentre);
 } // namespace cbc3d
