@@ -1,0 +1,304 @@
+// Topology of meshes and of label images, on shapes whose answers are known by hand.
+#include "cbc3d/MeshTopology.h"
+#include "cbc3d/TetGeometry.h"
+
+#include <gtest/gtest.h>
+
+#include <utility>
+
+namespace
+{
+using cbc3d::RegionTopology;
+
+// Appends a tet over new points, positively oriented.
+void AddTet(cbc3d::TetMesh& mesh, cbc3d::Tet tet, std::int32_t label = 1)
+{
+  const auto& p = mesh.Points;
+  if (cbc3d::SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) < 0)
+    std::swap(tet[1], tet[2]);
+  mesh.Tets.push_back(tet);
+  mesh.Labels.push_back(label);
+}
+
+// The unit tet 0..3, plus the points of a second tet as the tests below need them.
+cbc3d::TetMesh OneTet()
+{
+  cbc3d::TetMesh mesh;
+  mesh.Points = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
+  AddTet(mesh, { 0, 1, 2, 3 });
+  return mesh;
+}
+
+// The cubes (x, y, z) of a grid for which `solid` holds, each split into the six Kuhn tets along
+// its diagonal from (x, y, z); one diagonal direction everywhere makes neighbouring cubes
+// conform. `labelOf(x, y, z, tet)` labels tet 0..5 of a cube, in cyclic order around the
+// diagonal (consecutive ones share a face).
+template <typename Solid, typename LabelOf>
+cbc3d::TetMesh KuhnGrid(int nx, int ny, int nz, Solid solid, LabelOf labelOf)
+{
+  cbc3d::TetMesh mesh;
+  auto id = [&](int x, int y, int z) { return cbc3d::PointId(x + (nx + 1) * (y + (ny + 1) * z)); };
+  for (int z = 0; z <= nz; ++z)
+    for (int y = 0; y <= ny; ++y)
+      for (int x = 0; x <= nx; ++x)
+        mesh.Points.emplace_back(x, y, z);
+  // Axis orders around the diagonal: x y z, y x z, y z x, z y x, z x y, x z y.
+  const int orders[6][3] = { { 0, 1, 2 }, { 1, 0, 2 }, { 1, 2, 0 }, { 2, 1, 0 }, { 2, 0, 1 }, { 0, 2, 1 } };
+  for (int z = 0; z < nz; ++z)
+    for (int y = 0; y < ny; ++y)
+      for (int x = 0; x < nx; ++x)
+      {
+        if (!solid(x, y, z))
+          continue;
+        for (int t = 0; t < 6; ++t)
+        {
+          std::array<int, 3> at = { x, y, z };
+          cbc3d::Tet tet;
+          tet[0] = id(at[0], at[1], at[2]);
+          for (int step = 0; step < 3; ++step)
+          {
+            ++at[orders[t][step]];
+            tet[step + 1] = id(at[0], at[1], at[2]);
+          }
+          AddTet(mesh, tet, labelOf(x, y, z, t));
+        }
+      }
+  return mesh;
+}
+
+void ExpectManifoldBall(const RegionTopology& r, std::int64_t triangles)
+{
+  EXPECT_EQ(r.FaceComponents, 1);
+  EXPECT_EQ(r.VertexComponents, 1);
+  EXPECT_EQ(r.HingedParts, 0);
+  EXPECT_EQ(r.SurfaceTriangles, triangles);
+  EXPECT_EQ(r.NonManifoldEdges, 0);
+  EXPECT_EQ(r.NonManifoldVertices, 0);
+  EXPECT_EQ(r.SurfaceEuler, 2);
+}
+} // namespace
+
+TEST(MeshTopology, OneTetIsAManifoldBall)
+{
+  const cbc3d::MeshTopology topology = cbc3d::MeasureMeshTopology(OneTet());
+  ExpectManifoldBall(topology.Whole, 4);
+  ASSERT_EQ(topology.Tissues.size(), 1u);
+  ExpectManifoldBall(topology.Tissues.at(1), 4);
+  EXPECT_TRUE(topology.SolverReady());
+}
+
+TEST(MeshTopology, TwoTetsSharingAFaceAreOneBall)
+{
+  cbc3d::TetMesh mesh = OneTet();
+  mesh.Points.emplace_back(1, 1, 1);
+  AddTet(mesh, { 1, 2, 3, 4 });
+  const cbc3d::MeshTopology topology = cbc3d::MeasureMeshTopology(mesh);
+  ExpectManifoldBall(topology.Whole, 6); // V 5, E 9, F 6
+  ExpectManifoldBall(topology.Tissues.at(1), 6);
+  EXPECT_TRUE(topology.SolverReady());
+}
+
+TEST(MeshTopology, TwoTetsSharingAnEdgeAreHinged)
+{
+  cbc3d::TetMesh mesh = OneTet();
+  // A second tet on the edge 0-1 only, on the other side in y and z.
+  mesh.Points.emplace_back(0, -1, 0);
+  mesh.Points.emplace_back(0, 0, -1);
+  AddTet(mesh, { 0, 1, 4, 5 });
+  const cbc3d::MeshTopology topology = cbc3d::MeasureMeshTopology(mesh);
+  for (const RegionTopology& r : { topology.Whole, topology.Tissues.at(1) })
+  {
+    EXPECT_EQ(r.FaceComponents, 2);
+    EXPECT_EQ(r.VertexComponents, 1);
+    EXPECT_EQ(r.HingedParts, 1);
+    EXPECT_EQ(r.SurfaceTriangles, 8);
+    EXPECT_EQ(r.NonManifoldEdges, 1); // edge 0-1, in four triangles
+    // At 0 and 1, the four triangles through the edge link both tets' triangles into one fan.
+    EXPECT_EQ(r.NonManifoldVertices, 0);
+    EXPECT_EQ(r.SurfaceEuler, 3); // V 6, E 11, F 8
+  }
+  EXPECT_FALSE(topology.SolverReady());
+}
+
+TEST(MeshTopology, TwoTetsSharingAVertexAreHinged)
+{
+  cbc3d::TetMesh mesh = OneTet();
+  mesh.Points.emplace_back(-1, 0, 0);
+  mesh.Points.emplace_back(0, -1, 0);
+  mesh.Points.emplace_back(0, 0, -1);
+  AddTet(mesh, { 0, 4, 5, 6 });
+  const cbc3d::MeshTopology topology = cbc3d::MeasureMeshTopology(mesh);
+  for (const RegionTopology& r : { topology.Whole, topology.Tissues.at(1) })
+  {
+    EXPECT_EQ(r.FaceComponents, 2);
+    EXPECT_EQ(r.VertexComponents, 1);
+    EXPECT_EQ(r.HingedParts, 1);
+    EXPECT_EQ(r.NonManifoldEdges, 0);
+    EXPECT_EQ(r.NonManifoldVertices, 1); // vertex 0: two fans of three triangles
+    EXPECT_EQ(r.SurfaceEuler, 3);        // V 7, E 12, F 8
+  }
+  EXPECT_FALSE(topology.SolverReady());
+}
+
+TEST(MeshTopology, TwoSeparateTetsAreTwoComponentsNotHinged)
+{
+  cbc3d::TetMesh mesh = OneTet();
+  for (int i = 0; i < 4; ++i)
+    mesh.Points.push_back(mesh.Points[i] + Eigen::Vector3d(5, 0, 0));
+  AddTet(mesh, { 4, 5, 6, 7 });
+  const RegionTopology whole = cbc3d::MeasureMeshTopology(mesh).Whole;
+  EXPECT_EQ(whole.FaceComponents, 2);
+  EXPECT_EQ(whole.VertexComponents, 2);
+  EXPECT_EQ(whole.HingedParts, 0);
+  EXPECT_EQ(whole.SurfaceEuler, 4); // two spheres
+}
+
+TEST(MeshTopology, RingOfCubesIsASolidTorus)
+{
+  // 3 x 3 x 1 cubes without the centre one: 8 cubes, 48 tets.
+  const cbc3d::TetMesh mesh = KuhnGrid(
+    3, 3, 1, [](int x, int y, int) { return !(x == 1 && y == 1); }, [](int, int, int, int) { return 1; });
+  ASSERT_EQ(mesh.Tets.size(), 48u);
+  const cbc3d::MeshTopology topology = cbc3d::MeasureMeshTopology(mesh);
+  const RegionTopology& r = topology.Whole;
+  EXPECT_EQ(r.FaceComponents, 1);
+  EXPECT_EQ(r.VertexComponents, 1);
+  // Squares: 8 on top, 8 below, 12 outside, 4 inside the hole; two triangles each.
+  EXPECT_EQ(r.SurfaceTriangles, 64);
+  EXPECT_EQ(r.NonManifoldEdges, 0);
+  EXPECT_EQ(r.NonManifoldVertices, 0);
+  EXPECT_EQ(r.SurfaceEuler, 0);
+  EXPECT_TRUE(topology.SolverReady());
+}
+
+TEST(MeshTopology, CubeOfTwoTissuesCountsTheInterfaceInBoth)
+{
+  // The six tets around the diagonal: three consecutive ones labelled 1, the other three 2.
+  const cbc3d::TetMesh mesh = KuhnGrid(
+    1, 1, 1, [](int, int, int) { return true; }, [](int, int, int, int t) { return t < 3 ? 1 : 2; });
+  const cbc3d::MeshTopology topology = cbc3d::MeasureMeshTopology(mesh);
+  ExpectManifoldBall(topology.Whole, 12); // the cube's 6 squares
+  ASSERT_EQ(topology.Tissues.size(), 2u);
+  // Each wedge: 12 tet faces, 2 pairs inside, so 8 surface triangles of which 2 are the
+  // interface (V 6, E 12, F 8).
+  ExpectManifoldBall(topology.Tissues.at(1), 8);
+  ExpectManifoldBall(topology.Tissues.at(2), 8);
+  EXPECT_TRUE(topology.SolverReady());
+}
+
+TEST(MeshTopology, HingedTissueInsideAManifoldBody)
+{
+  // Tets 0 and 3 of the cube share only the diagonal: tissue 2 is hinged, the body is not.
+  const cbc3d::TetMesh mesh = KuhnGrid(
+    1, 1, 1, [](int, int, int) { return true; }, [](int, int, int, int t) { return t == 0 || t == 3 ? 2 : 1; });
+  const cbc3d::MeshTopology topology = cbc3d::MeasureMeshTopology(mesh);
+  ExpectManifoldBall(topology.Whole, 12);
+  for (const std::int32_t label : { 1, 2 })
+  {
+    const RegionTopology& r = topology.Tissues.at(label);
+    EXPECT_EQ(r.FaceComponents, 2) << label;
+    EXPECT_EQ(r.VertexComponents, 1) << label;
+    EXPECT_EQ(r.NonManifoldEdges, 1) << label; // the diagonal
+    // Two balls on one edge: tissue 2 V 6, E 11, F 8; tissue 1 (two wedges of two) V 8, E 17, F 12.
+    EXPECT_EQ(r.SurfaceEuler, 3) << label;
+  }
+  EXPECT_FALSE(topology.SolverReady());
+}
+
+TEST(MeshTopology, LargeBlockIsOneBall)
+{
+  // 50 x 50 x 40 cubes: 600,000 tets, the size the measure must handle quickly.
+  const int n[3] = { 50, 50, 40 };
+  const cbc3d::TetMesh mesh = KuhnGrid(
+    n[0], n[1], n[2], [](int, int, int) { return true; }, [](int x, int, int, int) { return x < 25 ? 1 : 2; });
+  const cbc3d::MeshTopology topology = cbc3d::MeasureMeshTopology(mesh);
+  const std::int64_t squares = 2 * (n[0] * n[1] + n[1] * n[2] + n[2] * n[0]);
+  ExpectManifoldBall(topology.Whole, 2 * squares);
+  // Each half is a 25 x 50 x 40 block, the interface in both.
+  const std::int64_t half = 2 * (25 * n[1] + n[1] * n[2] + n[2] * 25);
+  ExpectManifoldBall(topology.Tissues.at(1), 2 * half);
+  ExpectManifoldBall(topology.Tissues.at(2), 2 * half);
+}
+
+namespace
+{
+// An image of background 0 with `label` on the listed voxels.
+cbc3d::LabelImage Voxels(std::array<int, 3> dimensions, const std::vector<std::array<int, 3>>& on, std::int32_t label = 1)
+{
+  cbc3d::LabelImage image;
+  image.Dimensions = dimensions;
+  image.Labels.assign(static_cast<std::size_t>(image.VoxelCount()), 0);
+  for (const auto& v : on)
+    image.Labels[image.VoxelIndex(v[0], v[1], v[2])] = label;
+  return image;
+}
+} // namespace
+
+TEST(ImageTopology, OneVoxelIsABall)
+{
+  const cbc3d::ImageTopology topology = cbc3d::MeasureImageTopology(Voxels({ 3, 3, 3 }, { { 1, 1, 1 } }));
+  EXPECT_EQ(topology.WholeSurfaceEuler, 2);
+  ASSERT_EQ(topology.TissueSurfaceEuler.size(), 1u);
+  EXPECT_EQ(topology.TissueSurfaceEuler.at(1), 2);
+}
+
+TEST(ImageTopology, BlockFillingTheImageIsABall)
+{
+  // Beyond the image counts as outside: the faces on the border are surface too.
+  cbc3d::LabelImage image = Voxels({ 2, 2, 2 }, {});
+  image.Labels.assign(8, 1);
+  EXPECT_EQ(cbc3d::ImageSurfaceEuler(image).at(1), 2);
+}
+
+TEST(ImageTopology, RingOfEightVoxelsIsATorus)
+{
+  std::vector<std::array<int, 3>> ring;
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 3; ++x)
+      if (x != 1 || y != 1)
+        ring.push_back({ x, y, 0 });
+  EXPECT_EQ(cbc3d::ImageSurfaceEuler(Voxels({ 3, 3, 2 }, ring)).at(1), 0);
+}
+
+TEST(ImageTopology, HollowCubeIsAThickShell)
+{
+  cbc3d::LabelImage image = Voxels({ 3, 3, 3 }, {});
+  image.Labels.assign(27, 1);
+  image.Labels[image.VoxelIndex(1, 1, 1)] = 0;
+  EXPECT_EQ(cbc3d::ImageSurfaceEuler(image).at(1), 4); // outer and inner sphere
+}
+
+TEST(ImageTopology, VoxelsTouchingAlongAnEdge)
+{
+  // V 8 + 8 - 2 = 14, E 12 + 12 - 1 = 23, F 12.
+  EXPECT_EQ(cbc3d::ImageSurfaceEuler(Voxels({ 2, 2, 2 }, { { 0, 0, 0 }, { 1, 1, 0 } })).at(1), 3);
+}
+
+TEST(ImageTopology, VoxelsTouchingAtACorner)
+{
+  // V 8 + 8 - 1 = 15, E 24, F 12: two spheres glued at a point.
+  EXPECT_EQ(cbc3d::ImageSurfaceEuler(Voxels({ 2, 2, 2 }, { { 0, 0, 0 }, { 1, 1, 1 } })).at(1), 3);
+}
+
+TEST(ImageTopology, TwoTissuesAndTheWholeBody)
+{
+  // Two face neighbours of different labels: each a ball, and so is their union. A third label
+  // far away adds a sphere to the body.
+  cbc3d::LabelImage image = Voxels({ 5, 2, 2 }, { { 0, 0, 0 } }, 1);
+  image.Labels[image.VoxelIndex(1, 0, 0)] = 2;
+  image.Labels[image.VoxelIndex(4, 1, 1)] = 7;
+  const cbc3d::ImageTopology topology = cbc3d::MeasureImageTopology(image);
+  EXPECT_EQ(topology.TissueSurfaceEuler.at(1), 2);
+  EXPECT_EQ(topology.TissueSurfaceEuler.at(2), 2);
+  EXPECT_EQ(topology.TissueSurfaceEuler.at(7), 2);
+  EXPECT_EQ(topology.WholeSurfaceEuler, 4);
+}
+
+TEST(ImageTopology, BackgroundLabelsAreNotTissue)
+{
+  cbc3d::LabelImage image = Voxels({ 3, 3, 3 }, { { 1, 1, 1 } }, 5);
+  image.BackgroundLabels = { 0, 5 };
+  const cbc3d::ImageTopology topology = cbc3d::MeasureImageTopology(image);
+  EXPECT_TRUE(topology.TissueSurfaceEuler.empty());
+  EXPECT_EQ(topology.WholeSurfaceEuler, 0);
+}
