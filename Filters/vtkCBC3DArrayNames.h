@@ -28,6 +28,14 @@
  * `TissueMeshToImageDistance`, `TissueImageToMeshDistance`, `TissueHausdorffDistance95`,
  * `TissueMeanSurfaceDistance`, `TissueVolume` (mm^3 in the mesh) and, with an image,
  * `TissueImageVolume` (mm^3 of its voxels).
+ *
+ * Topology field data (vtkCBC3DMeshQuality, vtkIdTypeArray): over the whole mesh
+ * `FaceComponents`, `VertexComponents`, `HingedParts`, `NonManifoldEdges`,
+ * `NonManifoldVertices` (these two: the whole body's plus every tissue's), `SurfaceEuler`,
+ * `SolverReady` (0 or 1) and, with an image, `ImageSurfaceEuler`; per tissue in ascending label
+ * order `TissueFaceComponents`, `TissueVertexComponents`, `TissueHingedParts`,
+ * `TissueNonManifoldEdges`, `TissueNonManifoldVertices`, `TissueSurfaceEuler` and, with an
+ * image, `TissueImageSurfaceEuler`.
  */
 #ifndef vtkCBC3DArrayNames_h
 #define vtkCBC3DArrayNames_h
@@ -74,6 +82,21 @@ constexpr const char* TissueTetCount = "TissueTetCount";
 constexpr const char* TissueMinDihedralAngle = "TissueMinDihedralAngle";
 constexpr const char* TissueMaxDihedralAngle = "TissueMaxDihedralAngle";
 constexpr const char* TissueInvertedTetCount = "TissueInvertedTetCount";
+constexpr const char* FaceComponents = "FaceComponents";
+constexpr const char* VertexComponents = "VertexComponents";
+constexpr const char* HingedParts = "HingedParts";
+constexpr const char* NonManifoldEdges = "NonManifoldEdges";
+constexpr const char* NonManifoldVertices = "NonManifoldVertices";
+constexpr const char* SurfaceEuler = "SurfaceEuler";
+constexpr const char* SolverReady = "SolverReady";
+constexpr const char* ImageSurfaceEuler = "ImageSurfaceEuler";
+constexpr const char* TissueFaceComponents = "TissueFaceComponents";
+constexpr const char* TissueVertexComponents = "TissueVertexComponents";
+constexpr const char* TissueHingedParts = "TissueHingedParts";
+constexpr const char* TissueNonManifoldEdges = "TissueNonManifoldEdges";
+constexpr const char* TissueNonManifoldVertices = "TissueNonManifoldVertices";
+constexpr const char* TissueSurfaceEuler = "TissueSurfaceEuler";
+constexpr const char* TissueImageSurfaceEuler = "TissueImageSurfaceEuler";
 }
 
 #endif

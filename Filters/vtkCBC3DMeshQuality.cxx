@@ -3,6 +3,7 @@
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DConvert.h"
 
+#include "cbc3d/MeshTopology.h"
 #include "cbc3d/Parallel.h"
 #include "cbc3d/Quality.h"
 #include "cbc3d/SurfaceDistance.h"
@@ -28,6 +29,7 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkCBC3DMeshQuality);
@@ -91,6 +93,67 @@ vtkSmartPointer<vtkStaticPointLocator> MakeLocator(
   locator->SetDataSet(cloud);
   locator->BuildLocator();
   return locator;
+}
+
+// The topology arrays: the whole body's, then one value per tissue row (`labels`, ascending).
+// `image` is null without the label image.
+void AddTopologyFields(vtkFieldData* fields, const cbc3d::MeshTopology& topology,
+  const cbc3d::ImageTopology* image, const std::vector<int>& labels)
+{
+  namespace names = vtkCBC3DArrayNames;
+  const cbc3d::RegionTopology& whole = topology.Whole;
+  // A solver meets every tissue's surface defects as well as the body's.
+  vtkIdType edges = whole.NonManifoldEdges, vertices = whole.NonManifoldVertices;
+  for (const auto& entry : topology.Tissues)
+  {
+    edges += entry.second.NonManifoldEdges;
+    vertices += entry.second.NonManifoldVertices;
+  }
+  auto one = [fields](const char* name, vtkIdType value) {
+    AddFieldArray<vtkIdTypeArray>(fields, name, std::vector<vtkIdType>{ value });
+  };
+  one(names::FaceComponents, whole.FaceComponents);
+  one(names::VertexComponents, whole.VertexComponents);
+  one(names::HingedParts, whole.HingedParts);
+  one(names::NonManifoldEdges, edges);
+  one(names::NonManifoldVertices, vertices);
+  one(names::SurfaceEuler, whole.SurfaceEuler);
+  one(names::SolverReady, topology.SolverReady() ? 1 : 0);
+  if (image)
+  {
+    one(names::ImageSurfaceEuler, image->WholeSurfaceEuler);
+  }
+
+  // One column per field of RegionTopology; a tissue the mesh lacks is the empty set's zeros.
+  using Field = std::int64_t cbc3d::RegionTopology::*;
+  const std::pair<const char*, Field> columns[] = {
+    { names::TissueFaceComponents, &cbc3d::RegionTopology::FaceComponents },
+    { names::TissueVertexComponents, &cbc3d::RegionTopology::VertexComponents },
+    { names::TissueHingedParts, &cbc3d::RegionTopology::HingedParts },
+    { names::TissueNonManifoldEdges, &cbc3d::RegionTopology::NonManifoldEdges },
+    { names::TissueNonManifoldVertices, &cbc3d::RegionTopology::NonManifoldVertices },
+    { names::TissueSurfaceEuler, &cbc3d::RegionTopology::SurfaceEuler },
+  };
+  for (const auto& column : columns)
+  {
+    std::vector<vtkIdType> values;
+    for (const int label : labels)
+    {
+      const auto found = topology.Tissues.find(label);
+      values.push_back(found == topology.Tissues.end() ? 0 : found->second.*column.second);
+    }
+    AddFieldArray<vtkIdTypeArray>(fields, column.first, values);
+  }
+  if (image)
+  {
+    std::vector<vtkIdType> values;
+    for (const int label : labels)
+    {
+      const auto found = image->TissueSurfaceEuler.find(label);
+      values.push_back(found == image->TissueSurfaceEuler.end() ? 0 : found->second);
+    }
+    AddFieldArray<vtkIdTypeArray>(fields, names::TissueImageSurfaceEuler, values);
+  }
 }
 
 // One row of the per-tissue table.
@@ -277,6 +340,9 @@ int vtkCBC3DMeshQuality::RequestData(
     AddFieldArray<vtkDoubleArray>(fields, names::TissueHausdorffDistance95, hausdorff95);
     AddFieldArray<vtkDoubleArray>(fields, names::TissueMeanSurfaceDistance, mean);
   }
+  const cbc3d::ImageTopology imageTopology =
+    withImage ? cbc3d::MeasureImageTopology(image) : cbc3d::ImageTopology();
+  AddTopologyFields(fields, cbc3d::MeasureMeshTopology(mesh), withImage ? &imageTopology : nullptr, tissueLabels);
   output->SetFieldData(fields);
   this->UpdateProgress(1.0);
   return 1;

@@ -1,6 +1,7 @@
 /**
  * @class   vtkCBC3DMeshQuality
- * @brief   Dihedral angles and, with the label image, the Hausdorff distance of a labelled mesh.
+ * @brief   Dihedral angles, topology and, with the label image, the Hausdorff distance of a
+ *          labelled mesh.
  *
  * Input port 0: a vtkUnstructuredGrid of VTK_TETRA cells with an integer `Label` cell array (the
  * output of the other CBC3D filters). Input port 1 (optional): the label image the mesh was made
@@ -30,6 +31,24 @@
  *   the tissue's surface), `TissueHausdorffDistance`, `TissueMeshToImageDistance` and
  *   `TissueImageToMeshDistance` (the two one-sided distances), `TissueHausdorffDistance95` (the
  *   larger of the two one-sided 95th percentiles) and `TissueMeanSurfaceDistance` (mm).
+ *
+ * Topology (field data, vtkIdTypeArray, cbc3d/MeshTopology.h): a tissue's tets are those with
+ * its label, its surface the mesh faces with exactly one tet of it (interfaces are in both
+ * tissues' surfaces); the whole body is every tet, its surface the mesh boundary.
+ * - over the whole body: `FaceComponents` and `VertexComponents` (its tets connected through
+ *   faces, through vertices), `HingedParts` (the difference: parts held by an edge or a vertex
+ *   only), `SurfaceEuler` (V - E + F of its surface); `NonManifoldEdges` (surface edges in more
+ *   than two surface triangles) and `NonManifoldVertices` (surface vertices whose triangles form
+ *   more than one fan), each the whole body's plus the sum over tissues, so that the mesh
+ *   counts every defect a solver would meet; `SolverReady` (1 when the body and every tissue
+ *   have no hinged part and no non-manifold edge or vertex, else 0); with the image,
+ *   `ImageSurfaceEuler` (V - E + F of the voxel-face surface of all tissue voxels);
+ * - per tissue (the rows above): `TissueFaceComponents`, `TissueVertexComponents`,
+ *   `TissueHingedParts`, `TissueNonManifoldEdges`, `TissueNonManifoldVertices`,
+ *   `TissueSurfaceEuler` and, with the image, `TissueImageSurfaceEuler` (its voxels'). A tissue
+ *   absent from the mesh has 0 components and Euler 0 (the empty surface's).
+ * Equal mesh and image Euler characteristics per tissue with a solver-ready mesh mean the
+ * surfaces have the image's topology (a ball 2, a torus 0, a hollow shell 4).
  *
  * A tissue present in only one of mesh and image gets NaN distances and a warning; the mesh's
  * distances are then NaN too (a lost tissue has no finite distance).

@@ -1,5 +1,6 @@
 // The quality filter against known answers: angles of a regular tet, a BCC tet and a sliver;
-// the Hausdorff distance and volume of a voxel block meshed at its voxel corners; a lost tissue.
+// the Hausdorff distance, volume and topology of a voxel block meshed at its voxel corners; a
+// lost tissue; the topology of hinged tets.
 #include "CBC3DTestUtilities.h"
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DMeshQuality.h"
@@ -141,6 +142,15 @@ void TestBlockHausdorff()
   // Volumes: the mesh is voxel-exact, the block's eight voxels of 0.5 x 1 x 2 mm.
   CHECK(Near(Field(out, vtkCBC3DArrayNames::TissueVolume), 8.0, 1e-12));
   CHECK(Near(Field(out, vtkCBC3DArrayNames::TissueImageVolume), 8.0, 1e-12));
+  // Topology: a ball in the mesh and in the image.
+  namespace names = vtkCBC3DArrayNames;
+  CHECK(Field(out, names::FaceComponents) == 1 && Field(out, names::VertexComponents) == 1);
+  CHECK(Field(out, names::HingedParts) == 0 && Field(out, names::NonManifoldEdges) == 0 &&
+    Field(out, names::NonManifoldVertices) == 0);
+  CHECK(Field(out, names::SurfaceEuler) == 2 && Field(out, names::ImageSurfaceEuler) == 2);
+  CHECK(Field(out, names::SolverReady) == 1);
+  CHECK(Field(out, names::TissueSurfaceEuler) == 2 && Field(out, names::TissueImageSurfaceEuler) == 2);
+  CHECK(out->GetFieldData()->GetArray(names::SolverReady)->IsA("vtkIdTypeArray"));
 
   // Shift the mesh by 0.1 mm along x: the corners on the +x side are then farther.
   vtkPoints* points = mesh->GetPoints();
@@ -171,6 +181,65 @@ void TestBlockHausdorff()
   CHECK(Field(out, vtkCBC3DArrayNames::TissueVolume, 1) == 0.0);
   CHECK(Near(Field(out, vtkCBC3DArrayNames::TissueImageVolume, 1), 1.0, 1e-12));
   CHECK(warnings->Text.find("tissue 7 is in the image but not in the mesh") != std::string::npos);
+  // The lost voxel touches the block at a corner: two spheres glued at a point in the image.
+  CHECK(Field(out, vtkCBC3DArrayNames::ImageSurfaceEuler) == 3);
+  CHECK(Field(out, vtkCBC3DArrayNames::TissueImageSurfaceEuler, 1) == 2);
+  CHECK(Field(out, vtkCBC3DArrayNames::TissueFaceComponents, 1) == 0);
+  CHECK(Field(out, vtkCBC3DArrayNames::TissueSurfaceEuler, 1) == 0);
+}
+
+// A cube of six tets around its diagonal 0-7, tets 0 and 3 (which share only the diagonal)
+// labelled 2, the others 1: the body is a ball, each tissue two parts hinged on the diagonal.
+// Then two tets of one label sharing only a vertex.
+void TestTopology()
+{
+  namespace names = vtkCBC3DArrayNames;
+  std::vector<std::array<double, 3>> corners;
+  for (int c = 0; c < 8; ++c)
+  {
+    corners.push_back({ double(c & 1), double((c >> 1) & 1), double((c >> 2) & 1) });
+  }
+  auto cube = MakeMesh(corners,
+    { { 0, 1, 3, 7 }, { 0, 3, 2, 7 }, { 0, 2, 6, 7 }, { 0, 6, 4, 7 }, { 0, 4, 5, 7 }, { 0, 5, 1, 7 } },
+    { 2, 1, 1, 2, 1, 1 });
+  vtkNew<vtkCBC3DMeshQuality> quality;
+  quality->SetInputData(cube);
+  quality->Update();
+  vtkUnstructuredGrid* out = quality->GetOutput();
+  CHECK(Field(out, names::FaceComponents) == 1 && Field(out, names::VertexComponents) == 1);
+  CHECK(Field(out, names::HingedParts) == 0);
+  CHECK(Field(out, names::SurfaceEuler) == 2);
+  // The body's surface is manifold; the diagonal is non-manifold in both tissues' surfaces.
+  CHECK(Field(out, names::NonManifoldEdges) == 2);
+  CHECK(Field(out, names::NonManifoldVertices) == 0);
+  CHECK(Field(out, names::SolverReady) == 0);
+  CHECK(out->GetFieldData()->GetArray(names::ImageSurfaceEuler) == nullptr);
+  CHECK(out->GetFieldData()->GetArray(names::TissueImageSurfaceEuler) == nullptr);
+  for (vtkIdType i = 0; i < 2; ++i)
+  {
+    CHECK(Field(out, names::TissueLabel, i) == i + 1);
+    CHECK(Field(out, names::TissueFaceComponents, i) == 2);
+    CHECK(Field(out, names::TissueVertexComponents, i) == 1);
+    CHECK(Field(out, names::TissueHingedParts, i) == 1);
+    CHECK(Field(out, names::TissueNonManifoldEdges, i) == 1);
+    CHECK(Field(out, names::TissueNonManifoldVertices, i) == 0);
+    CHECK(Field(out, names::TissueSurfaceEuler, i) == 3); // two balls sharing an edge
+  }
+
+  // One non-manifold vertex, counted in the body's surface and in the tissue's.
+  auto pinched = MakeMesh({ { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }, { -1, 0, 0 }, { 0, -1, 0 },
+                            { 0, 0, -1 } },
+    { { 0, 1, 2, 3 }, { 0, 5, 4, 6 } }, { 4, 4 });
+  quality->SetInputData(pinched);
+  quality->Update();
+  out = quality->GetOutput();
+  CHECK(Field(out, names::FaceComponents) == 2 && Field(out, names::VertexComponents) == 1);
+  CHECK(Field(out, names::HingedParts) == 1 && Field(out, names::TissueHingedParts) == 1);
+  CHECK(Field(out, names::NonManifoldEdges) == 0);
+  CHECK(Field(out, names::NonManifoldVertices) == 2);
+  CHECK(Field(out, names::TissueNonManifoldVertices) == 1);
+  CHECK(Field(out, names::SurfaceEuler) == 3);
+  CHECK(Field(out, names::SolverReady) == 0);
 }
 
 void TestBadInput()
@@ -191,6 +260,7 @@ int TestCBC3DMeshQuality(int, char*[])
 {
   TestAngles();
   TestBlockHausdorff();
+  TestTopology();
   TestBadInput();
   return cbc3dtest::Finish();
 }
