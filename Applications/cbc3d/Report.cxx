@@ -12,7 +12,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <type_traits>
+#include <utility>
 #include <sstream>
 
 namespace
@@ -65,6 +67,70 @@ void AddFigures(nlohmann::json& out, const TissueFigures& f)
     out["components_in_mesh"] = f.ComponentsInMesh;
   }
 }
+
+void AddTopology(nlohmann::json& out, const TissueFigures& f)
+{
+  out["face_components"] = f.FaceComponents;
+  out["vertex_components"] = f.VertexComponents;
+  out["hinged_parts"] = f.HingedParts;
+  out["nonmanifold_edges"] = f.NonManifoldEdges;
+  out["nonmanifold_vertices"] = f.NonManifoldVertices;
+  out["surface_euler"] = f.SurfaceEuler;
+  out["image_surface_euler"] = f.ImageSurfaceEuler ? nlohmann::json(*f.ImageSurfaceEuler) : nlohmann::json(nullptr);
+}
+
+// Reads the topology of the whole mesh (prefix "") or of tissue row i (prefix "Tissue") from
+// the field data; an array that is missing leaves the figure as it was.
+void ReadTopology(vtkUnstructuredGrid* mesh, const std::string& prefix, vtkIdType i, TissueFigures& f)
+{
+  namespace names = vtkCBC3DArrayNames;
+  const std::pair<const char*, long long*> counts[] = { { names::FaceComponents, &f.FaceComponents },
+    { names::VertexComponents, &f.VertexComponents }, { names::HingedParts, &f.HingedParts },
+    { names::NonManifoldEdges, &f.NonManifoldEdges }, { names::NonManifoldVertices, &f.NonManifoldVertices },
+    { names::SurfaceEuler, &f.SurfaceEuler } };
+  for (const auto& [name, value] : counts)
+  {
+    if (vtkDataArray* array = Field(mesh, (prefix + name).c_str()))
+    {
+      *value = static_cast<long long>(array->GetTuple1(i));
+    }
+  }
+  if (vtkDataArray* image = Field(mesh, (prefix + names::ImageSurfaceEuler).c_str()))
+  {
+    f.ImageSurfaceEuler = static_cast<long long>(image->GetTuple1(i));
+  }
+}
+
+std::string Plural(long long count, const char* one, const char* many)
+{
+  return std::to_string(count) + " " + (count == 1 ? one : many);
+}
+
+std::string EulerText(const TissueFigures& f)
+{
+  return std::to_string(f.SurfaceEuler) +
+    (f.ImageSurfaceEuler ? " (image " + std::to_string(*f.ImageSurfaceEuler) + ")" : std::string());
+}
+
+// The per-tissue topology table and the one-line verdict on the whole mesh.
+void FormatTopology(std::ostringstream& out, const RunReport& report)
+{
+  out << "  tissue  pieces (face / vertex)  hinged parts  non-manifold edges / vertices  Euler (image)\n";
+  for (const auto& [label, f] : report.Tissues)
+  {
+    char line[200];
+    std::snprintf(line, sizeof(line), "  %-6d  %8lld / %-11lld  %12lld  %18lld / %-8lld  %lld (%s)\n", label,
+      f.FaceComponents, f.VertexComponents, f.HingedParts, f.NonManifoldEdges, f.NonManifoldVertices,
+      f.SurfaceEuler, f.ImageSurfaceEuler ? std::to_string(*f.ImageSurfaceEuler).c_str() : "-");
+    out << line;
+  }
+  const TissueFigures& all = report.Overall;
+  out << "  topology: " << Plural(all.FaceComponents, "piece", "pieces") << " (face) / "
+      << all.VertexComponents << " (vertex), " << Plural(all.HingedParts, "hinged part", "hinged parts")
+      << ", " << Plural(all.NonManifoldEdges, "non-manifold edge", "non-manifold edges") << ", "
+      << Plural(all.NonManifoldVertices, "vertex", "vertices") << ", Euler "
+      << EulerText(all) << ": " << (report.SolverReady ? "ready" : "NOT ready") << " for a solver\n";
+}
 } // namespace
 
 bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
@@ -93,10 +159,13 @@ bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
   read(names::HausdorffDistance, 0, all.Hausdorff);
   read(names::HausdorffDistance95, 0, all.Hausdorff95);
   read(names::MeanSurfaceDistance, 0, all.MeanDistance);
+  ReadTopology(mesh, "", 0, all);
+  read(names::SolverReady, 0, report.SolverReady);
   report.Tissues.clear();
   for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
   {
     TissueFigures& tissue = report.Tissues[static_cast<int>(labels->GetTuple1(i))];
+    ReadTopology(mesh, "Tissue", i, tissue);
     read(names::TissueTetCount, i, tissue.Tets);
     read(names::TissueInvertedTetCount, i, tissue.Inverted);
     read(names::TissueSmallAngleTetCount, i, tissue.SmallAngle);
@@ -168,6 +237,7 @@ std::string FormatSummary(const RunReport& report)
     row(std::to_string(label), figures);
   }
   row("all", report.Overall);
+  FormatTopology(out, report);
   if (report.RefinementPasses >= 0)
   {
     out << "  refinement: " << report.RefinementPasses << " passes, " << report.RefinementStopReason;
@@ -206,6 +276,10 @@ std::string FormatJson(const RunReport& report)
     { "background", o.BackgroundLabels }, { "threads", o.Threads } };
   AddFigures(doc, report.Overall);
   doc["points"] = report.Points;
+  nlohmann::json topology;
+  AddTopology(topology, report.Overall);
+  topology["solver_ready"] = report.SolverReady;
+  doc["topology"] = topology;
   nlohmann::json seconds = nlohmann::json::object();
   for (const auto& [stage, value] : report.Seconds)
   {
@@ -229,6 +303,7 @@ std::string FormatJson(const RunReport& report)
   for (const auto& [label, figures] : report.Tissues)
   {
     AddFigures(tissues[std::to_string(label)], figures);
+    AddTopology(tissues[std::to_string(label)], figures);
   }
   doc["tissues"] = tissues;
   return doc.dump(2) + "\n";

@@ -5,6 +5,7 @@
 
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,6 +35,16 @@ struct TissueFigures
   double F2 = std::numeric_limits<double>::quiet_NaN();
   long long Components = -1;
   long long ComponentsInMesh = -1;
+  // Topology (vtkCBC3DMeshQuality): components through faces and through vertices, hinged
+  // parts, non-manifold surface edges and vertices (the mesh's: its body's plus its tissues'),
+  // the surface's Euler characteristic and, with the image, its voxels' (absent without).
+  long long FaceComponents = 0;
+  long long VertexComponents = 0;
+  long long HingedParts = 0;
+  long long NonManifoldEdges = 0;
+  long long NonManifoldVertices = 0;
+  long long SurfaceEuler = 0;
+  std::optional<long long> ImageSurfaceEuler;
 };
 
 /// What one run of cbc3d measured.
@@ -43,6 +54,7 @@ struct RunReport
   double BCCSizeUsed = 0.0;
   long long Points = 0;
   TissueFigures Overall;
+  bool SolverReady = false; // no hinged part, no non-manifold edge or vertex anywhere
   std::map<int, TissueFigures> Tissues;
   std::vector<std::pair<std::string, double>> Seconds; // per stage, in order
   int RefinementPasses = -1;                           // -1: no refinement

@@ -58,6 +58,34 @@ with tempfile.TemporaryDirectory() as work:
     for label in ("1", "2", "3"):
         check(any(line.split()[:1] == [label] for line in result.stdout.splitlines()),
               "summary has a row for tissue " + label)
+    # Topology: the image's Euler characteristics are the phantom's design (tissues 1 and 2
+    # hollow shells, 3 a ball, all of them together a ball); the mesh's figures agree with each
+    # other and with the summary's verdict.
+    topology_keys = ("face_components", "vertex_components", "hinged_parts", "nonmanifold_edges",
+                     "nonmanifold_vertices", "surface_euler", "image_surface_euler")
+    topology = report.get("topology", {})
+    check(all(k in topology for k in topology_keys) and isinstance(topology.get("solver_ready"), bool),
+          "report has a topology object: %r" % topology)
+    check(topology.get("image_surface_euler") == 2, "whole body's image Euler characteristic is 2 (a ball)")
+    for label, euler in (("1", 4), ("2", 4), ("3", 2)):
+        tissue = report["tissues"][label]
+        check(all(k in tissue for k in topology_keys), "tissue %s has the topology keys" % label)
+        check(tissue.get("image_surface_euler") == euler,
+              "tissue %s: image Euler characteristic %r, expected %d" % (label, tissue.get("image_surface_euler"), euler))
+        check(tissue.get("hinged_parts") == tissue.get("face_components", 0) - tissue.get("vertex_components", 0),
+              "tissue %s: hinged parts are face minus vertex components" % label)
+    if all(k in topology for k in topology_keys):
+        tissues = report["tissues"].values()
+        ready = (topology["hinged_parts"] == 0 and topology["nonmanifold_edges"] == 0
+                 and topology["nonmanifold_vertices"] == 0 and all(t["hinged_parts"] == 0 for t in tissues))
+        check(topology["solver_ready"] == ready, "solver_ready %r matches the counts" % topology["solver_ready"])
+        check(topology["nonmanifold_edges"] >= sum(t["nonmanifold_edges"] for t in tissues),
+              "the mesh's non-manifold edges include every tissue's")
+        verdict = [line for line in result.stdout.splitlines() if line.strip().startswith("topology:")]
+        check(len(verdict) == 1 and verdict[0].endswith(
+            (": ready for a solver" if ready else ": NOT ready for a solver"))
+              and ("Euler %d (image 2)" % topology["surface_euler"]) in verdict[0],
+              "summary prints the topology verdict: %r" % verdict)
     # Inline binary, never appended (VTK 9.2 cannot read appended files here).
     text = open(vtu, "rb").read()
     check(b'format="binary"' in text and b'format="appended"' not in text, ".vtu is inline binary")
