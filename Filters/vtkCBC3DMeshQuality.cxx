@@ -341,7 +341,7 @@ int vtkCBC3DMeshQuality::RequestData(
     AddFieldArray<vtkDoubleArray>(fields, names::TissueMeanSurfaceDistance, mean);
   }
   const cbc3d::ImageTopology imageTopology =
-    withImage ? cbc3d::MeasureImageTopology(image) : cbc3d::ImageTopology();
+    withImage ? cbc3d::MeasureImageTopology(image, this->NumberOfThreads) : cbc3d::ImageTopology();
   AddTopologyFields(fields, cbc3d::MeasureMeshTopology(mesh), withImage ? &imageTopology : nullptr, tissueLabels);
   output->SetFieldData(fields);
   this->UpdateProgress(1.0);

@@ -160,27 +160,45 @@ int main(int argc, char* argv[])
     f->GetArray("HausdorffDistance")->GetTuple1(0), f->GetArray("HausdorffDistance95")->GetTuple1(0),
     f->GetArray("MeanSurfaceDistance")->GetTuple1(0), seconds);
   // One JSON line for the benchmark script, with the keys of cbc3d's --report, the mesh's
-  // figures and each tissue's Hausdorff distances and volumes.
+  // figures and each tissue's Hausdorff distances, volumes and topology.
   namespace names = vtkCBC3DArrayNames;
   auto value = [f](const char* name, vtkIdType i) { return f->GetArray(name)->GetTuple1(i); };
-  char text[512];
+  // Topology, with cbc3d's report keys: the whole mesh's (prefix "") or tissue row i's ("Tissue").
+  auto topology = [&value](const std::string& prefix, vtkIdType i) {
+    char keys[384];
+    std::snprintf(keys, sizeof(keys),
+      "\"face_components\": %lld, \"vertex_components\": %lld, \"hinged_parts\": %lld, "
+      "\"nonmanifold_edges\": %lld, \"nonmanifold_vertices\": %lld, \"surface_euler\": %lld, "
+      "\"image_surface_euler\": %lld",
+      static_cast<long long>(value((prefix + names::FaceComponents).c_str(), i)),
+      static_cast<long long>(value((prefix + names::VertexComponents).c_str(), i)),
+      static_cast<long long>(value((prefix + names::HingedParts).c_str(), i)),
+      static_cast<long long>(value((prefix + names::NonManifoldEdges).c_str(), i)),
+      static_cast<long long>(value((prefix + names::NonManifoldVertices).c_str(), i)),
+      static_cast<long long>(value((prefix + names::SurfaceEuler).c_str(), i)),
+      static_cast<long long>(value((prefix + names::ImageSurfaceEuler).c_str(), i)));
+    return std::string(keys);
+  };
+  char text[1024];
   std::snprintf(text, sizeof(text),
     "{\"tetrahedra\": %lld, \"points\": %lld, \"min_dihedral_deg\": %.6f, \"max_dihedral_deg\": %.6f, "
-    "\"hausdorff_mm\": %.6f, \"hausdorff_95_mm\": %.6f, \"mean_distance_mm\": %.6f, \"seconds\": %.3f, \"tissues\": {",
+    "\"hausdorff_mm\": %.6f, \"hausdorff_95_mm\": %.6f, \"mean_distance_mm\": %.6f, \"seconds\": %.3f, "
+    "\"topology\": {%s, \"solver_ready\": %s}, \"tissues\": {",
     static_cast<long long>(mesh->GetNumberOfCells()), static_cast<long long>(mesh->GetNumberOfPoints()),
     value(names::MinDihedralAngle, 0), value(names::MaxDihedralAngle, 0), value(names::HausdorffDistance, 0),
-    value(names::HausdorffDistance95, 0), value(names::MeanSurfaceDistance, 0), seconds);
+    value(names::HausdorffDistance95, 0), value(names::MeanSurfaceDistance, 0), seconds,
+    topology("", 0).c_str(), value(names::SolverReady, 0) != 0 ? "true" : "false");
   std::string json = text;
   const vtkIdType tissues = f->GetArray(names::TissueLabel) ? f->GetArray(names::TissueLabel)->GetNumberOfTuples() : 0;
   for (vtkIdType i = 0; i < tissues; ++i)
   {
     std::snprintf(text, sizeof(text),
       "%s\"%d\": {\"tetrahedra\": %lld, \"hausdorff_mm\": %.6f, \"hausdorff_95_mm\": %.6f, \"mean_distance_mm\": %.6f, "
-      "\"volume_mm3\": %.6f, \"image_volume_mm3\": %.6f}",
+      "\"volume_mm3\": %.6f, \"image_volume_mm3\": %.6f, %s}",
       i ? ", " : "", static_cast<int>(value(names::TissueLabel, i)),
       static_cast<long long>(value(names::TissueTetCount, i)), value(names::TissueHausdorffDistance, i),
       value(names::TissueHausdorffDistance95, i), value(names::TissueMeanSurfaceDistance, i),
-      value(names::TissueVolume, i), value(names::TissueImageVolume, i));
+      value(names::TissueVolume, i), value(names::TissueImageVolume, i), topology("Tissue", i).c_str());
     json += text;
   }
   std::printf("%s}}\n", json.c_str());

@@ -12,6 +12,9 @@ edge --iterations 5`; background 1 for the k-means head) and prints Markdown tab
   cbc3d against the deterministic run; the paper's published figures where it has them;
 - cbc3d's seconds per stage;
 - HD per tissue, cbc3d and CGAL;
+- topology per tissue and of the whole mesh, cbc3d and CGAL: components through faces and
+  through vertices, hinged parts, non-manifold surface edges and vertices, the surface's Euler
+  characteristic against the image's, and whether the mesh is ready for a solver;
 - scaling: the brain upsampled 2x and 4x per axis (nearest neighbour, same world extent), meshed
   by cbc3d at 1 and 2 threads (and all cores where there are more): time and memory against
   image size and thread count.
@@ -254,6 +257,46 @@ def print_tissues(results):
     print_table(header, rows)
 
 
+def topology_cells(t):
+    """Face / vertex components, hinged parts, non-manifold edges / vertices, Euler mesh / image."""
+    if not t or "face_components" not in t:
+        return ["-"] * 4
+    image = t.get("image_surface_euler")
+    return ["%d / %d" % (t["face_components"], t["vertex_components"]), "%d" % t["hinged_parts"],
+            "%d / %d" % (t["nonmanifold_edges"], t["nonmanifold_vertices"]),
+            "%d / %s" % (t["surface_euler"], "-" if image is None else "%d" % image)]
+
+
+def print_topology(results):
+    """Topology per tissue and of the whole mesh ("all", with the solver verdict): cbc3d and
+    CGAL with no time limits side by side."""
+    rows = []
+    with_cgal = any("cgal_deterministic" in entry for entry in results.values())
+    for name, entry in results.items():
+        ours = entry["cbc3d"]
+        if "error" in ours:
+            continue
+        exact = entry.get("cgal_deterministic", {})
+        theirs = {} if "error" in exact else exact
+        for label, t in list(ours["tissues"].items()) + [("all", ours.get("topology"))]:
+            other = theirs.get("topology") if label == "all" else theirs.get("tissues", {}).get(label)
+            row = [name, label] + topology_cells(t)
+            if with_cgal:
+                row += topology_cells(other)
+            if label == "all":
+                ready = lambda r: "-" if not r or "solver_ready" not in r else ("yes" if r["solver_ready"] else "no")
+                row[1] = "all (solver ready: cbc3d %s%s)" % (ready(t), ", CGAL " + ready(other) if with_cgal else "")
+            rows.append(row)
+    columns = ["face / vertex components", "hinged parts", "non-manifold edges / vertices", "Euler mesh / image"]
+    header = ["image", "tissue"] + ["cbc3d " + c for c in columns]
+    if with_cgal:
+        header += ["CGAL " + c for c in columns]
+    print("Topology per tissue (its surface: faces with one tet of it) and of the whole mesh (its boundary; "
+          "its non-manifold counts include every tissue's)%s:" % ("; CGAL with no time limits" if with_cgal else ""))
+    print()
+    print_table(header, rows)
+
+
 def read_nifti_header(stream):
     """The bytes up to the voxels (header and extensions) and the byte order."""
     start = stream.read(352)
@@ -453,6 +496,7 @@ def main():
         print_comparison(figures["images"], options.cgal_runs)
         print_stages(figures["images"])
         print_tissues(figures["images"])
+        print_topology(figures["images"])
         figures["table1"] = run_table1(cli)
         print_table1(figures["table1"])
     if not options.no_scaling:

@@ -1,5 +1,7 @@
 #include "cbc3d/ImageTopology.h"
 
+#include "cbc3d/Parallel.h"
+
 #include <algorithm>
 #include <array>
 #include <vector>
@@ -102,7 +104,7 @@ std::int64_t VoxelSurfaceEuler(
   return flagged(corner) - flagged(edge[0]) - flagged(edge[1]) - flagged(edge[2]) + faces;
 }
 
-ImageTopology Measure(const LabelImage& image, bool withWhole)
+ImageTopology Measure(const LabelImage& image, bool withWhole, int numberOfThreads)
 {
   ImageTopology topology;
   const std::vector<LabelBox> boxes = TissueBoxes(image);
@@ -110,34 +112,48 @@ ImageTopology Measure(const LabelImage& image, bool withWhole)
   {
     return topology;
   }
-  const std::vector<std::int32_t>& labels = image.Labels;
   LabelBox whole = boxes[0];
   for (const LabelBox& box : boxes)
   {
-    topology.TissueSurfaceEuler[box.Label] = VoxelSurfaceEuler(
-      image, box.Lower, box.Upper, [&labels, &box](std::int64_t v) { return labels[v] == box.Label; });
     for (int a = 0; a < 3; ++a)
     {
       whole.Lower[a] = std::min(whole.Lower[a], box.Lower[a]);
       whole.Upper[a] = std::max(whole.Upper[a], box.Upper[a]);
     }
   }
-  if (withWhole)
+  // One job per tissue, and the whole body last; the jobs share nothing but the image.
+  const std::vector<std::int32_t>& labels = image.Labels;
+  const int jobs = static_cast<int>(boxes.size()) + (withWhole ? 1 : 0);
+  std::vector<std::int64_t> euler(jobs, 0);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(ThreadCount(numberOfThreads))
+  for (int job = 0; job < jobs; ++job)
   {
-    topology.WholeSurfaceEuler = VoxelSurfaceEuler(
-      image, whole.Lower, whole.Upper, [&image](std::int64_t v) { return image.IsTissue(image.Labels[v]); });
+    if (job == static_cast<int>(boxes.size()))
+    {
+      euler[job] = VoxelSurfaceEuler(
+        image, whole.Lower, whole.Upper, [&image](std::int64_t v) { return image.IsTissue(image.Labels[v]); });
+      continue;
+    }
+    const LabelBox& box = boxes[job];
+    euler[job] = VoxelSurfaceEuler(
+      image, box.Lower, box.Upper, [&labels, &box](std::int64_t v) { return labels[v] == box.Label; });
   }
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+  {
+    topology.TissueSurfaceEuler[boxes[i].Label] = euler[i];
+  }
+  topology.WholeSurfaceEuler = withWhole ? euler.back() : 0;
   return topology;
 }
 } // namespace
 
-ImageTopology MeasureImageTopology(const LabelImage& image)
+ImageTopology MeasureImageTopology(const LabelImage& image, int numberOfThreads)
 {
-  return Measure(image, true);
+  return Measure(image, true, numberOfThreads);
 }
 
-std::map<std::int32_t, std::int64_t> ImageSurfaceEuler(const LabelImage& image)
+std::map<std::int32_t, std::int64_t> ImageSurfaceEuler(const LabelImage& image, int numberOfThreads)
 {
-  return Measure(image, false).TissueSurfaceEuler;
+  return Measure(image, false, numberOfThreads).TissueSurfaceEuler;
 }
 } // namespace cbc3d

@@ -20,11 +20,12 @@ struct ImageTopology
 };
 
 /// Every tissue's and the whole body's surface Euler characteristic. Each set is scanned over
-/// its bounding box only, with flag arrays for the corners and edges.
-ImageTopology MeasureImageTopology(const LabelImage& image);
+/// its bounding box only, with flag arrays for the corners and edges, one set per thread
+/// (0 threads: the OpenMP default). The same result for any thread count.
+ImageTopology MeasureImageTopology(const LabelImage& image, int numberOfThreads = 0);
 
 /// Every tissue's surface Euler characteristic (MeasureImageTopology without the whole body).
-std::map<std::int32_t, std::int64_t> ImageSurfaceEuler(const LabelImage& image);
+std::map<std::int32_t, std::int64_t> ImageSurfaceEuler(const LabelImage& image, int numberOfThreads = 0);
 } // namespace cbc3d
 
 #endif
