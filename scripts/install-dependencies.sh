@@ -10,6 +10,8 @@ packages=(
   build-essential cmake git pkg-config googletest libgtest-dev xvfb xauth
   # ParaView 5.11 SDK (brings VTK 9.2) and Python for pvpython tests
   paraview paraview-dev python3-paraview python3-numpy
+  # FE clients and converters the mesh tests hand meshes to; scipy cross-checks the checker
+  python3-dolfinx-real python3-meshio python3-gmsh python3-netcdf4 python3-scipy
   # core dependencies
   libeigen3-dev
   # packages ParaView's CMake config requires at configure time

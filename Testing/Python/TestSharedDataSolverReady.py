@@ -1,0 +1,84 @@
+# Plain python3, real images: the meshes cbc3d makes of the five shared images, at its defaults
+# and at the paper's settings, are fit for a solver by the independent checker mesh_topology.py:
+#   - no hinged part (face components = vertex components) and no non-manifold edge or vertex,
+#     in any tissue or in the whole mesh (a hinge lets a part turn freely: singular stiffness);
+#   - no tissue in more face-connected pieces than the image has 6-connected components of 8
+#     voxels or more (cbc3d's default MinimumComponentVoxels);
+#   - the whole mesh one face-connected piece where the image's tissues together are one piece;
+#   - the brain's surface Euler characteristic equal to that of its voxel-face surface.
+# Skips (77) without ../shared/data.
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cbc3d_testing import Checks, shared_data_or_skip  # noqa: E402
+import mesh_topology as mt  # noqa: E402
+
+shared = shared_data_or_skip()
+cli = os.environ["CBC3D_CLI"]
+check = Checks()
+MINIMUM_VOXELS = 8
+CASES = [("cbc3d-brain.nii.gz", [0]), ("cbc3d-nidus.nii.gz", [0]), ("cbc3d-ventricles.nii.gz", [0]),
+         ("nipype-tissue-labels.nii.gz", [0]), ("itk-t1-kmeans-labels.nii.gz", [1])]
+SETTINGS = [("defaults", []),
+            ("paper", ["--bcc-size", "8", "--fidelity", "0.95", "--pattern", "edge", "--iterations", "5"])]
+
+
+def sound(name, r):
+    """The three local checks of one tissue or of the whole mesh; prints its figures."""
+    check(r["hinged"] == 0 and r["nonmanifold_edges"] == 0 and r["nonmanifold_vertices"] == 0,
+          "%s: hinged %d (face components %d, vertex components %d), non-manifold edges %d, "
+          "vertices %d; surface Euler %d" % (name, r["hinged"], r["face_components"], r["vertex_components"],
+                                             r["nonmanifold_edges"], r["nonmanifold_vertices"], r["euler"]))
+
+
+with tempfile.TemporaryDirectory() as work:
+    for name, background in CASES:
+        path = os.path.join(shared, name)
+        if not check(os.path.isfile(path), "%s present in %s" % (name, shared)):
+            continue
+        image = mt.image_report(mt.read_nifti(path), background=background, minimum_voxels=MINIMUM_VOXELS)
+        for label, r in image.items():
+            print("     %s image %s: %s" % (name, "tissue %s" % label if label != "all" else "(all tissues)",
+                                            mt.format_image("", r)[2:]))
+        for setting, extra in SETTINGS:
+            tag = "%s (%s)" % (name, setting)
+            out = os.path.join(work, "%s-%s.vtu" % (name.replace(".nii.gz", ""), setting))
+            args = [cli, path, "-o", out, "--quiet"] + extra
+            for label in background:
+                args += ["--background", str(label)]
+            start = time.time()
+            result = subprocess.run(args, capture_output=True, text=True, timeout=900)
+            if not check(result.returncode == 0, "%s: cbc3d exits 0 in %.1f s %s"
+                         % (tag, time.time() - start, result.stderr.strip()[-400:])):
+                continue
+            points, tets, labels = mt.read_mesh(out)
+            mesh = mt.mesh_report(points, tets, labels)
+            check(mesh["all"]["crowded_faces"] == 0, "%s: %d tets, %d points, no face in 3+ tets (%d)"
+                  % (tag, len(tets), len(points), mesh["all"]["crowded_faces"]))
+            for label in sorted(k for k in mesh if k != "all"):
+                r = mesh[label]
+                sound("%s tissue %d (%d tets)" % (tag, label, r["tets"]), r)
+                if not check(label in image, "%s tissue %d is a tissue of the image" % (tag, label)):
+                    continue
+                check(r["face_components"] <= image[label]["components_kept"],
+                      "%s tissue %d: %d face-connected pieces, image %d components of %d+ voxels"
+                      % (tag, label, r["face_components"], image[label]["components_kept"], MINIMUM_VOXELS))
+            sound("%s whole mesh" % tag, mesh["all"])
+            # Specks under MINIMUM_VOXELS are dropped by the mesher, so they do not count here.
+            if image["all"]["components_kept"] == 1:
+                check(mesh["all"]["face_components"] == 1,
+                      "%s whole mesh: %d face-connected pieces, the image's tissues one piece"
+                      % (tag, mesh["all"]["face_components"]))
+            else:
+                print("     %s whole mesh: %d face-connected pieces; the image's tissues are %d pieces "
+                      "of %d+ voxels (no check)" % (tag, mesh["all"]["face_components"],
+                                                    image["all"]["components_kept"], MINIMUM_VOXELS))
+            if name == "cbc3d-brain.nii.gz":
+                check(1 in mesh and mesh[1]["euler"] == image[1]["euler"],
+                      "%s: brain surface Euler characteristic %s, image's %d"
+                      % (tag, mesh[1]["euler"] if 1 in mesh else "none", image[1]["euler"]))
+check.finish()
