@@ -3,6 +3,7 @@
 #include "cbc3d/BoundaryCoverage.h"
 #include "cbc3d/Parallel.h"
 #include "cbc3d/RedGreenMesh.h"
+#include "cbc3d/SoundLabels.h"
 #include "cbc3d/SurfaceEars.h"
 #include "cbc3d/TetVoxelSampler.h"
 #include "cbc3d/TissueComponents.h"
@@ -333,13 +334,20 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
       ++holders[component][mesh.VoxelOwner[v]];
     }
   }
+  std::map<std::int64_t, std::int32_t> pinned; // tet -> the component's label
   for (const auto& [component, tets] : holders)
   {
     const auto best = std::max_element(tets.begin(), tets.end(),
       [](const auto& a, const auto& b) { return a.second < b.second; }); // first of equals wins
     mesh.Labels[best->first] = components.Label[component];
+    pinned[best->first] = components.Label[component];
   }
-  if (!holders.empty())
+  // No hinge, no non-manifold surface, no piece the image does not have.
+  const SoundLabelsResult sound = MakeLabelsSound(image, components, params.MinimumComponentVoxels,
+    hierarchy.Points(), mesh.Tets, mesh.Counts, mesh.VoxelOwner, pinned, NoLabel, mesh.Labels);
+  result.Relabelled = sound.Relabelled;
+  result.UnrepairedVertices = sound.Unrepaired;
+  if (!holders.empty() || sound.Relabelled > 0)
   {
     fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
   }

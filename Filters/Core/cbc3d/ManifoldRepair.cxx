@@ -1,0 +1,701 @@
+#include "cbc3d/ManifoldRepair.h"
+
+#include "cbc3d/MeshFaces.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <queue>
+
+namespace cbc3d
+{
+namespace
+{
+constexpr std::int64_t Unreachable = std::numeric_limits<std::int64_t>::max();
+// The outside cannot change class: its votes outweigh any tet's (and a star's sum of them fits).
+constexpr std::int64_t OutsideVotes = std::int64_t(1) << 52;
+// Each step of a joining path costs a little, so that of equal paths the shorter wins.
+constexpr std::int64_t StepCost = 1;
+// Repairs in one visit, and visits, before a vertex's whole star takes one class.
+constexpr int RoundsPerVisit = 6;
+constexpr int VisitsBeforeFallback = 3;
+
+// The tets around one vertex as a graph: two are linked when they share a face through the
+// vertex. Each face on the mesh boundary through the vertex is an outside node, linked to its
+// tet and to the outside faces next to it across the gap it bounds (the mesh need not be
+// convex: the lattice leaves out tets with no tissue).
+struct Star
+{
+  std::vector<std::int64_t> Tets;      // node i < Tets.size() is tet Tets[i]; then outside nodes
+  std::vector<std::vector<int>> Links; // per node, its linked nodes
+  std::vector<std::int32_t> Class;     // per node
+
+  int Nodes() const { return static_cast<int>(this->Class.size()); }
+  bool IsTet(int node) const { return node < static_cast<int>(this->Tets.size()); }
+};
+
+// An outside face through the star's vertex v: its node, its tet's node and its far vertices.
+struct OutsideFace
+{
+  int Node, Tet;
+  PointId Far[2];
+};
+
+// Vertex -> tets, in compressed rows.
+struct VertexTets
+{
+  std::vector<std::int64_t> Start, Tets;
+
+  VertexTets(const std::vector<Tet>& tets, std::size_t pointCount)
+    : Start(pointCount + 1, 0)
+  {
+    for (const Tet& tet : tets)
+      for (const PointId p : tet)
+        ++this->Start[p + 1];
+    for (std::size_t p = 0; p < pointCount; ++p)
+      this->Start[p + 1] += this->Start[p];
+    this->Tets.resize(this->Start[pointCount]);
+    std::vector<std::int64_t> fill(this->Start.begin(), this->Start.end() - 1);
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      for (const PointId p : tets[t])
+        this->Tets[fill[p]++] = static_cast<std::int64_t>(t);
+  }
+};
+
+// Components of the nodes for which `member` holds; returns their count, fills `component`
+// (-1 for non-members), numbered in node order.
+template <typename Member>
+int Components(const Star& star, Member member, std::vector<int>& component)
+{
+  component.assign(star.Nodes(), -1);
+  int count = 0;
+  std::vector<int> stack;
+  for (int seed = 0; seed < star.Nodes(); ++seed)
+  {
+    if (component[seed] >= 0 || !member(seed))
+    {
+      continue;
+    }
+    component[seed] = count;
+    stack.assign(1, seed);
+    while (!stack.empty())
+    {
+      const int node = stack.back();
+      stack.pop_back();
+      for (const int next : star.Links[node])
+      {
+        if (component[next] < 0 && member(next))
+        {
+          component[next] = count;
+          stack.push_back(next);
+        }
+      }
+    }
+    ++count;
+  }
+  return count;
+}
+
+void LinkNodes(Star& star, int a, int b)
+{
+  star.Links[a].push_back(b);
+  star.Links[b].push_back(a);
+}
+
+struct Violation
+{
+  bool Split = false;     // the class is in several parts (else: its complement is)
+  std::int32_t Class = 0;
+};
+
+class Repairer
+{
+public:
+  Repairer(const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
+    const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
+    const ClassVotes& votes, std::vector<std::int32_t>& classes)
+    : PointList(points)
+    , TetList(tets)
+    , Across(across)
+    , Stars(tets, points.size())
+    , Background(background)
+    , Votes(votes)
+    , Classes(classes)
+    , LocalOf(tets.size(), -1)
+  {
+    for (const std::int32_t cls : classes)
+      ++this->TetsOfClass[cls];
+  }
+
+  void Load(PointId v, Star& star);
+  int CoveredPieces(PointId v, const Star& star) const;
+  void LinkOutside(PointId v, Star& star, const std::vector<OutsideFace>& outside) const;
+  void LinkAroundEdge(PointId v, PointId w, Star& star, const std::vector<OutsideFace>& outside,
+    std::vector<int>& ends) const;
+  bool FindViolation(const Star& star, Violation& found);
+  bool IsUniform(PointId v) const;
+  void RepairStar(PointId v, int visit, std::vector<std::int64_t>& changed, ManifoldRepairResult& result);
+
+private:
+  std::int64_t VotesOf(const Star& star, int node, std::int32_t cls) const
+  {
+    return star.IsTet(node) ? this->Votes(star.Tets[node], cls) : OutsideVotes;
+  }
+  // The outside cannot change class.
+  std::int64_t Cost(const Star& star, int node, std::int32_t to) const
+  {
+    if (!star.IsTet(node))
+    {
+      return to == star.Class[node] ? 0 : OutsideVotes;
+    }
+    return this->VotesOf(star, node, star.Class[node]) - this->VotesOf(star, node, to);
+  }
+  std::int64_t Path(const Star& star, const std::vector<int>& from, const std::vector<char>& through,
+    const std::vector<char>& goal, std::int32_t to, std::vector<int>& path) const;
+  void Relabel(Star& star, int node, std::int32_t to, std::vector<std::int64_t>& changed);
+  void RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed);
+  void RepairRing(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed);
+  void Unify(Star& star, std::vector<std::int64_t>& changed);
+
+  const std::vector<Eigen::Vector3d>& PointList;
+  const std::vector<Tet>& TetList;
+  const std::vector<std::array<std::int64_t, 4>>& Across;
+  VertexTets Stars;
+  std::int32_t Background;
+  const ClassVotes& Votes;
+  std::vector<std::int32_t>& Classes;
+  std::vector<int> LocalOf; // scratch: tet -> its node in the star being loaded
+  std::map<std::int32_t, std::int64_t> TetsOfClass; // at the start: the last resort's ranks
+
+  std::int64_t Rank(std::int32_t cls) const
+  {
+    const auto found = this->TetsOfClass.find(cls);
+    return cls == this->Background || found == this->TetsOfClass.end() ? -1 : found->second;
+  }
+};
+
+// One class all round, and no tissue meeting the mesh boundary (where the gaps could pinch).
+bool Repairer::IsUniform(PointId v) const
+{
+  const std::int64_t first = this->Stars.Start[v], last = this->Stars.Start[v + 1];
+  if (first == last)
+  {
+    return true;
+  }
+  const std::int32_t cls = this->Classes[this->Stars.Tets[first]];
+  for (std::int64_t i = first; i < last; ++i)
+  {
+    const std::int64_t t = this->Stars.Tets[i];
+    if (this->Classes[t] != cls)
+    {
+      return false;
+    }
+    if (cls != this->Background)
+      for (int j = 0; j < 4; ++j)
+        if (this->TetList[t][j] != v && this->Across[t][j] < 0)
+          return false;
+  }
+  return true;
+}
+
+void Repairer::Load(PointId v, Star& star)
+{
+  const std::int64_t first = this->Stars.Start[v], last = this->Stars.Start[v + 1];
+  star.Tets.assign(this->Stars.Tets.begin() + first, this->Stars.Tets.begin() + last);
+  const int n = static_cast<int>(star.Tets.size());
+  star.Links.assign(n, {});
+  star.Class.resize(n);
+  for (int i = 0; i < n; ++i)
+  {
+    this->LocalOf[star.Tets[i]] = i;
+    star.Class[i] = this->Classes[star.Tets[i]];
+  }
+  std::vector<OutsideFace> outside;
+  for (int i = 0; i < n; ++i)
+  {
+    const Tet& tet = this->TetList[star.Tets[i]];
+    for (int j = 0; j < 4; ++j)
+    {
+      if (tet[j] == v)
+      {
+        continue; // the face opposite v does not pass through it
+      }
+      const std::int64_t neighbour = this->Across[star.Tets[i]][j];
+      if (neighbour >= 0)
+      {
+        star.Links[i].push_back(this->LocalOf[neighbour]);
+        continue;
+      }
+      OutsideFace face{ star.Nodes(), i, { -1, -1 } };
+      for (int k = 0, f = 0; k < 4; ++k)
+        if (k != j && tet[k] != v)
+          face.Far[f++] = tet[k];
+      star.Class.push_back(this->Background);
+      star.Links.push_back({ i });
+      star.Links[i].push_back(face.Node);
+      outside.push_back(face);
+    }
+  }
+  this->LinkOutside(v, star, outside);
+  if (!outside.empty() && this->CoveredPieces(v, star) > 1)
+  {
+    // The mesh itself pinches at v: its pieces there are islands in one gap around them.
+    for (std::size_t f = 1; f < outside.size(); ++f)
+      LinkNodes(star, outside[f - 1].Node, outside[f].Node);
+  }
+  for (const std::int64_t t : star.Tets)
+  {
+    this->LocalOf[t] = -1;
+  }
+}
+
+// The pieces of the mesh around v: its tets joined through shared edges or faces through v.
+int Repairer::CoveredPieces(PointId v, const Star& star) const
+{
+  std::vector<PointId> far;
+  for (const std::int64_t t : star.Tets)
+    for (const PointId p : this->TetList[t])
+      if (p != v)
+        far.push_back(p);
+  std::sort(far.begin(), far.end());
+  far.erase(std::unique(far.begin(), far.end()), far.end());
+  std::vector<int> parent(far.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int x) {
+    while (parent[x] != x)
+      x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  auto index = [&](PointId p) { return int(std::lower_bound(far.begin(), far.end(), p) - far.begin()); };
+  int pieces = static_cast<int>(far.size());
+  for (const std::int64_t t : star.Tets)
+  {
+    int first = -1;
+    for (const PointId p : this->TetList[t])
+    {
+      if (p == v)
+        continue;
+      const int root = find(index(p));
+      if (first < 0)
+        first = root;
+      else if (root != find(first))
+      {
+        parent[root] = find(first);
+        --pieces;
+      }
+    }
+  }
+  return pieces;
+}
+
+// Links the outside faces that bound one gap: around each edge (v, w) the tets form chains
+// whose ends are outside faces; going round the edge, two consecutive ends of different chains
+// (or the two ends of the only chain) face the same gap.
+void Repairer::LinkOutside(PointId v, Star& star, const std::vector<OutsideFace>& outside) const
+{
+  std::vector<std::pair<PointId, int>> byEdge; // (w, index in outside)
+  for (int f = 0; f < static_cast<int>(outside.size()); ++f)
+    for (const PointId w : outside[f].Far)
+      byEdge.emplace_back(w, f);
+  std::sort(byEdge.begin(), byEdge.end());
+  for (std::size_t a = 0; a < byEdge.size();)
+  {
+    std::size_t b = a;
+    while (b < byEdge.size() && byEdge[b].first == byEdge[a].first)
+      ++b;
+    std::vector<int> ends;
+    for (std::size_t e = a; e < b; ++e)
+      ends.push_back(byEdge[e].second);
+    if (ends.size() == 2)
+      LinkNodes(star, outside[ends[0]].Node, outside[ends[1]].Node);
+    else if (ends.size() > 2)
+      this->LinkAroundEdge(v, byEdge[a].first, star, outside, ends);
+    a = b;
+  }
+}
+
+// Where the mesh pinches along the edge (v, w), the ends are ordered by their angle about it.
+void Repairer::LinkAroundEdge(PointId v, PointId w, Star& star,
+  const std::vector<OutsideFace>& outside, std::vector<int>& ends) const
+{
+  const Eigen::Vector3d axis = (this->PointList[w] - this->PointList[v]).normalized();
+  const Eigen::Vector3d u = axis.unitOrthogonal(), t = axis.cross(u);
+  auto angle = [&](int f) {
+    const OutsideFace& face = outside[f];
+    const PointId x = face.Far[0] == w ? face.Far[1] : face.Far[0];
+    const Eigen::Vector3d d = this->PointList[x] - this->PointList[v];
+    return std::atan2(d.dot(t), d.dot(u));
+  };
+  std::sort(ends.begin(), ends.end(), [&](int a, int b) { return angle(a) < angle(b); });
+  // The chain of each end: the tets containing w, joined through faces containing w.
+  std::vector<int> chain;
+  Components(
+    star,
+    [&](int node) {
+      const Tet& tet = this->TetList[star.Tets[node]];
+      return star.IsTet(node) && std::find(tet.begin(), tet.end(), w) != tet.end();
+    },
+    chain);
+  const std::size_t count = ends.size();
+  for (std::size_t e = 0; e < count; ++e)
+  {
+    const int a = ends[e], b = ends[(e + 1) % count];
+    if (chain[outside[a].Tet] != chain[outside[b].Tet])
+      LinkNodes(star, outside[a].Node, outside[b].Node);
+  }
+}
+
+bool Repairer::FindViolation(const Star& star, Violation& found)
+{
+  // Where no tissue is, the mesh has nothing (the gaps of the lattice may pinch there).
+  if (std::all_of(star.Class.begin(), star.Class.end(), [&](std::int32_t c) { return c == this->Background; }))
+  {
+    return false;
+  }
+  std::vector<std::int32_t> present(star.Class);
+  std::sort(present.begin(), present.end());
+  present.erase(std::unique(present.begin(), present.end()), present.end());
+  std::vector<int> component;
+  // Split classes first: joining or trimming them often mends a ring too.
+  for (const bool split : { true, false })
+  {
+    for (const std::int32_t cls : present)
+    {
+      const int parts = Components(
+        star, [&](int node) { return (star.Class[node] == cls) == split; }, component);
+      if (parts > 1)
+      {
+        found.Split = split;
+        found.Class = cls;
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+// The cheapest path of `through` nodes from the `from` nodes to a node linked to a `goal` node,
+// each step costing the node's relabelling to `to`; fills `path` (without the ends).
+std::int64_t Repairer::Path(const Star& star, const std::vector<int>& from,
+  const std::vector<char>& through, const std::vector<char>& goal, std::int32_t to,
+  std::vector<int>& path) const
+{
+  using Entry = std::pair<std::int64_t, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> open;
+  std::vector<std::int64_t> best(star.Nodes(), Unreachable);
+  std::vector<int> previous(star.Nodes(), -1);
+  for (const int node : from)
+  {
+    best[node] = 0;
+    open.emplace(0, node);
+  }
+  while (!open.empty())
+  {
+    const auto [cost, node] = open.top();
+    open.pop();
+    if (cost > best[node])
+    {
+      continue;
+    }
+    if (goal[node])
+    {
+      path.clear();
+      for (int at = previous[node]; at >= 0 && best[at] > 0; at = previous[at])
+      {
+        path.push_back(at);
+      }
+      return cost;
+    }
+    for (const int next : star.Links[node])
+    {
+      const bool step = through[next] && star.IsTet(next);
+      if (!step && !goal[next])
+      {
+        continue;
+      }
+      const std::int64_t added = goal[next] ? 0 : std::max<std::int64_t>(0, this->Cost(star, next, to)) + StepCost;
+      if (cost + added < best[next])
+      {
+        best[next] = cost + added;
+        previous[next] = node;
+        open.emplace(best[next], next);
+      }
+    }
+  }
+  return Unreachable;
+}
+
+void Repairer::Relabel(Star& star, int node, std::int32_t to, std::vector<std::int64_t>& changed)
+{
+  if (!star.IsTet(node))
+  {
+    return; // the outside stays background
+  }
+  star.Class[node] = to;
+  this->Classes[star.Tets[node]] = to;
+  changed.push_back(star.Tets[node]);
+}
+
+// A class in several parts around the vertex: the part it can best spare is either joined to
+// the part it values most, or given to its neighbours, whichever costs fewer votes.
+void Repairer::RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed)
+{
+  std::vector<int> part;
+  const int parts = Components(star, [&](int node) { return star.Class[node] == cls; }, part);
+  std::vector<std::int64_t> worth(parts, 0);
+  for (int node = 0; node < star.Nodes(); ++node)
+    if (part[node] >= 0)
+      worth[part[node]] += this->VotesOf(star, node, cls);
+  const int keeper = int(std::max_element(worth.begin(), worth.end()) - worth.begin());
+  int spare = keeper == 0 ? 1 : 0;
+  for (int p = 0; p < parts; ++p)
+    if (p != keeper && worth[p] < worth[spare])
+      spare = p;
+
+  // Giving the spare part away: each tet to the neighbouring class it holds most of.
+  std::vector<std::int32_t> alternatives;
+  for (int node = 0; node < star.Nodes(); ++node)
+    if (part[node] == spare)
+      for (const int next : star.Links[node])
+        if (star.Class[next] != cls)
+          alternatives.push_back(star.Class[next]);
+  std::sort(alternatives.begin(), alternatives.end());
+  alternatives.erase(std::unique(alternatives.begin(), alternatives.end()), alternatives.end());
+  std::vector<std::pair<int, std::int32_t>> giveAway;
+  std::int64_t giveCost = alternatives.empty() ? Unreachable : 0;
+  for (int node = 0; node < star.Nodes(); ++node)
+  {
+    if (part[node] != spare || alternatives.empty())
+      continue;
+    std::int32_t to = alternatives.front();
+    for (const std::int32_t other : alternatives)
+      if (this->VotesOf(star, node, other) > this->VotesOf(star, node, to))
+        to = other;
+    giveAway.emplace_back(node, to);
+    giveCost += this->Cost(star, node, to);
+  }
+
+  // Joining it: the cheapest path of other tets from the keeper to the spare part.
+  std::vector<int> from, path;
+  std::vector<char> through(star.Nodes(), 0), goal(star.Nodes(), 0);
+  for (int node = 0; node < star.Nodes(); ++node)
+  {
+    if (part[node] == keeper)
+      from.push_back(node);
+    goal[node] = part[node] == spare;
+    through[node] = part[node] < 0;
+  }
+  const std::int64_t joinCost = this->Path(star, from, through, goal, cls, path);
+  if (joinCost < giveCost)
+  {
+    for (const int node : path)
+      this->Relabel(star, node, cls, changed);
+    return;
+  }
+  for (const auto& [node, to] : giveAway)
+    this->Relabel(star, node, to, changed);
+}
+
+// A class ringing the vertex (its complement in several parts): the hole that is cheapest to
+// fill takes the class. Where the class is the background, the ring may instead be cut by a
+// path of the hole's class (two tissues that touched only here then share a face).
+void Repairer::RepairRing(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed)
+{
+  std::vector<int> hole;
+  const int holes = Components(star, [&](int node) { return star.Class[node] != cls; }, hole);
+  std::vector<std::int64_t> fillCost(holes, 0);
+  for (int node = 0; node < star.Nodes(); ++node)
+    if (hole[node] >= 0)
+      fillCost[hole[node]] += this->Cost(star, node, cls);
+  const int keeper = int(std::max_element(fillCost.begin(), fillCost.end()) - fillCost.begin());
+  int fill = keeper == 0 ? 1 : 0;
+  for (int h = 0; h < holes; ++h)
+    if (h != keeper && fillCost[h] < fillCost[fill])
+      fill = h;
+
+  if (cls == this->Background)
+  {
+    // The class the hole holds most of, for the cutting path.
+    std::int32_t to = cls;
+    std::int64_t most = -1;
+    for (int node = 0; node < star.Nodes(); ++node)
+      if (hole[node] == fill && this->VotesOf(star, node, star.Class[node]) > most)
+      {
+        most = this->VotesOf(star, node, star.Class[node]);
+        to = star.Class[node];
+      }
+    std::vector<int> from, path;
+    std::vector<char> through(star.Nodes(), 0), goal(star.Nodes(), 0);
+    for (int node = 0; node < star.Nodes(); ++node)
+    {
+      if (hole[node] == fill)
+        from.push_back(node);
+      goal[node] = hole[node] >= 0 && hole[node] != fill;
+      through[node] = hole[node] < 0;
+    }
+    const std::int64_t cutCost = this->Path(star, from, through, goal, to, path);
+    if (cutCost < fillCost[fill])
+    {
+      for (const int node : path)
+        this->Relabel(star, node, to, changed);
+      return;
+    }
+  }
+  for (int node = 0; node < star.Nodes(); ++node)
+    if (hole[node] == fill)
+      this->Relabel(star, node, cls, changed);
+}
+
+// The last resort: the whole star takes the highest ranked class in it (the tissue with the
+// most tets). Tets only ever move up the ranks this way, so neighbouring vertices cannot undo
+// each other's last resorts for ever.
+void Repairer::Unify(Star& star, std::vector<std::int64_t>& changed)
+{
+  std::int32_t best = this->Background;
+  for (int node = 0; node < star.Nodes(); ++node)
+    if (this->Rank(star.Class[node]) > this->Rank(best))
+      best = star.Class[node];
+  for (int node = 0; node < star.Nodes(); ++node)
+    if (star.IsTet(node) && star.Class[node] != best)
+      this->Relabel(star, node, best, changed);
+  Violation violation;
+  if (this->FindViolation(star, violation))
+  {
+    // The mesh boundary itself pinches here: leave the vertex to the background.
+    for (int node = 0; node < star.Nodes(); ++node)
+      if (star.IsTet(node) && star.Class[node] != this->Background)
+        this->Relabel(star, node, this->Background, changed);
+  }
+}
+
+void Repairer::RepairStar(PointId v, int visit, std::vector<std::int64_t>& changed,
+  ManifoldRepairResult& result)
+{
+  Star star;
+  this->Load(v, star);
+  Violation violation;
+  if (!this->FindViolation(star, violation))
+  {
+    return;
+  }
+  ++result.Repairs;
+  for (int round = 0; visit < VisitsBeforeFallback && round < RoundsPerVisit; ++round)
+  {
+    if (violation.Split)
+      this->RepairSplit(star, violation.Class, changed);
+    else
+      this->RepairRing(star, violation.Class, changed);
+    if (!this->FindViolation(star, violation))
+    {
+      return;
+    }
+  }
+  this->Unify(star, changed);
+}
+} // namespace
+
+std::vector<std::array<std::int64_t, 4>> FaceNeighbours(const std::vector<Tet>& tets, std::size_t pointCount)
+{
+  std::vector<std::array<std::int64_t, 4>> across(tets.size(), { -1, -1, -1, -1 });
+  for (const MeshFace& face : FindMeshFaces(tets, pointCount))
+  {
+    if (face.TetCount != 2)
+    {
+      continue;
+    }
+    for (int side = 0; side < 2; ++side)
+    {
+      const Tet& tet = tets[face.Tets[side]];
+      for (int i = 0; i < 4; ++i)
+      {
+        if (std::find(face.Points.begin(), face.Points.end(), tet[i]) == face.Points.end())
+        {
+          across[face.Tets[side]][i] = face.Tets[1 - side];
+        }
+      }
+    }
+  }
+  return across;
+}
+
+ManifoldRepairResult RepairManifoldLabels(const std::vector<Eigen::Vector3d>& points,
+  const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
+  std::int32_t background, const ClassVotes& votes, std::vector<std::int32_t>& classes,
+  const std::vector<PointId>& seeds)
+{
+  ManifoldRepairResult result;
+  const std::size_t pointCount = points.size();
+  Repairer repairer(points, tets, across, background, votes, classes);
+  std::deque<PointId> queue;
+  std::vector<char> queued(pointCount, 0);
+  std::vector<int> visits(pointCount, 0);
+  auto push = [&](PointId p) {
+    if (!queued[p])
+    {
+      queued[p] = 1;
+      queue.push_back(p);
+    }
+  };
+  if (seeds.empty())
+    for (std::size_t p = 0; p < pointCount; ++p)
+      push(static_cast<PointId>(p));
+  for (const PointId p : seeds)
+    push(p);
+  // Every repair changes at least one tet; the bound keeps a pathological cycle finite.
+  const std::int64_t budget = 64 * static_cast<std::int64_t>(pointCount) + 1024;
+  std::vector<std::int64_t> changed;
+  while (!queue.empty() && result.Repairs < budget)
+  {
+    const PointId v = queue.front();
+    queue.pop_front();
+    queued[v] = 0;
+    if (repairer.IsUniform(v))
+    {
+      continue;
+    }
+    changed.clear();
+    repairer.RepairStar(v, visits[v], changed, result);
+    if (changed.empty())
+    {
+      continue;
+    }
+    ++visits[v];
+    result.Relabelled += static_cast<std::int64_t>(changed.size());
+    for (const std::int64_t t : changed)
+      for (const PointId p : tets[t])
+        push(p);
+  }
+  // Each vertex left the queue manifold, and went back on it whenever its star changed.
+  if (!queue.empty())
+  {
+    result.Unrepaired = CountNonManifoldVertices(points, tets, across, background, classes);
+  }
+  return result;
+}
+
+std::int64_t CountNonManifoldVertices(const std::vector<Eigen::Vector3d>& points,
+  const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
+  std::int32_t background, const std::vector<std::int32_t>& classes)
+{
+  const ClassVotes none = [](std::int64_t, std::int32_t) { return std::int64_t(0); };
+  std::vector<std::int32_t> copy(classes);
+  const std::size_t pointCount = points.size();
+  Repairer repairer(points, tets, across, background, none, copy);
+  std::int64_t count = 0;
+  Star star;
+  Violation violation;
+  for (std::size_t p = 0; p < pointCount; ++p)
+  {
+    if (repairer.IsUniform(static_cast<PointId>(p)))
+      continue;
+    repairer.Load(static_cast<PointId>(p), star);
+    count += repairer.FindViolation(star, violation);
+  }
+  return count;
+}
+} // namespace cbc3d

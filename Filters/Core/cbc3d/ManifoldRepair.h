@@ -1,0 +1,52 @@
+#ifndef cbc3d_ManifoldRepair_h
+#define cbc3d_ManifoldRepair_h
+
+#include "cbc3d/TetMesh.h"
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace cbc3d
+{
+/// The tets across each tet's faces in a conforming mesh: Across[t][i] is the tet sharing the
+/// face opposite local vertex i of tet t, or -1 on the mesh boundary.
+std::vector<std::array<std::int64_t, 4>> FaceNeighbours(const std::vector<Tet>& tets, std::size_t pointCount);
+
+/// How much tet `tet` wants class `cls`: its voxel weight of that class. Relabelling a tet from
+/// a to b costs Votes(tet, a) - Votes(tet, b).
+using ClassVotes = std::function<std::int64_t(std::int64_t tet, std::int32_t cls)>;
+
+struct ManifoldRepairResult
+{
+  std::int64_t Relabelled = 0; // tet relabellings (a tet may count more than once)
+  std::int64_t Repairs = 0;    // vertex stars repaired
+  std::int64_t Unrepaired = 0; // vertices still not manifold (0 unless the work bound was hit)
+};
+
+/// Makes every class's region manifold at every vertex by relabelling tets: around each vertex
+/// the tets of a class must form one face-connected fan, and so must the tets of every other
+/// class together, so the class's boundary there is one disk. Beyond the mesh counts as class
+/// `background` (the mesh may have gaps and pinches of its own: each gap at a vertex is told
+/// apart by the order of its faces round their edges, from the `points`). This forbids tets that share only an edge or a vertex with the rest of their
+/// class (hinges), and non-manifold edges and vertices on every boundary and interface.
+///
+/// A class split into parts around a vertex is either joined (the cheapest face-connected path
+/// of other tets between the parts takes the class) or loses its smaller part (to the best
+/// neighbouring class), whichever changes fewer voxel votes; a class ringing a vertex is
+/// thickened into the smaller hole of the ring. A vertex that keeps failing gets its whole star
+/// in the class with the most votes there. Only vertices next to a change are looked at again,
+/// so the work follows the defects, not the mesh. `seeds`, when not empty, are the only
+/// vertices examined at first. Deterministic.
+ManifoldRepairResult RepairManifoldLabels(const std::vector<Eigen::Vector3d>& points,
+  const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
+  std::int32_t background, const ClassVotes& votes, std::vector<std::int32_t>& classes,
+  const std::vector<PointId>& seeds = {});
+
+/// The vertices where some class is not manifold (the condition RepairManifoldLabels makes).
+std::int64_t CountNonManifoldVertices(const std::vector<Eigen::Vector3d>& points,
+  const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
+  std::int32_t background, const std::vector<std::int32_t>& classes);
+} // namespace cbc3d
+
+#endif

@@ -1,0 +1,138 @@
+#include "cbc3d/StrayComponents.h"
+
+#include <algorithm>
+#include <numeric>
+#include <unordered_map>
+
+namespace cbc3d
+{
+namespace
+{
+struct DisjointSets
+{
+  std::vector<std::int64_t> Parent;
+
+  explicit DisjointSets(std::size_t n)
+    : Parent(n)
+  {
+    std::iota(this->Parent.begin(), this->Parent.end(), 0);
+  }
+  std::int64_t Find(std::int64_t x)
+  {
+    while (this->Parent[x] != x)
+    {
+      this->Parent[x] = this->Parent[this->Parent[x]];
+      x = this->Parent[x];
+    }
+    return x;
+  }
+  void Unite(std::int64_t a, std::int64_t b)
+  {
+    a = this->Find(a);
+    b = this->Find(b);
+    if (a != b)
+      this->Parent[std::max(a, b)] = std::min(a, b); // the smaller root: order-independent
+  }
+};
+
+// The pieces of every class; node tets.size() is the outside, joined to the boundary's
+// background tets.
+DisjointSets FindPieces(const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
+  std::int32_t background, const std::vector<std::int32_t>& classes)
+{
+  const std::int64_t outside = static_cast<std::int64_t>(tets.size());
+  DisjointSets pieces(tets.size() + 1);
+  for (std::int64_t t = 0; t < outside; ++t)
+    for (const std::int64_t n : across[t])
+    {
+      if (n >= 0 && classes[n] == classes[t])
+        pieces.Unite(t, n);
+      else if (n < 0 && classes[t] == background)
+        pieces.Unite(t, outside);
+    }
+  return pieces;
+}
+
+// Marks the piece holding most voxels of each image region (ties: the smaller root).
+std::vector<char> KeptPieces(DisjointSets& pieces, const std::vector<std::int32_t>& voxelOwner,
+  const ImageRegions& regions, const std::vector<std::int32_t>& classes)
+{
+  const std::int64_t outside = static_cast<std::int64_t>(classes.size());
+  std::vector<std::unordered_map<std::int64_t, std::int64_t>> held(regions.ClassOfRegion.size());
+  for (std::size_t v = 0; v < voxelOwner.size(); ++v)
+  {
+    const std::int32_t region = regions.RegionOfVoxel[v], owner = voxelOwner[v];
+    if (region >= 0 && owner >= 0 && classes[owner] == regions.ClassOfRegion[region])
+      ++held[region][pieces.Find(owner)];
+  }
+  std::vector<char> kept(classes.size() + 1, 0);
+  kept[pieces.Find(outside)] = 1;
+  for (const auto& counts : held)
+  {
+    std::int64_t best = -1, most = 0;
+    for (const auto& [piece, count] : counts)
+      if (count > most || (count == most && piece < best))
+      {
+        best = piece;
+        most = count;
+      }
+    if (best >= 0)
+      kept[best] = 1;
+  }
+  return kept;
+}
+} // namespace
+
+std::int64_t RemoveStrayComponents(const std::vector<Tet>& tets,
+  const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
+  const ClassVotes& votes, const std::vector<std::int32_t>& voxelOwner, const ImageRegions& regions,
+  std::vector<std::int32_t>& classes, std::vector<std::int64_t>& changed)
+{
+  DisjointSets pieces = FindPieces(tets, across, background, classes);
+  const std::vector<char> kept = KeptPieces(pieces, voxelOwner, regions, classes);
+  const std::int64_t count = static_cast<std::int64_t>(tets.size());
+  std::vector<char> stray(count, 0);
+  std::vector<char> strayRoot(count + 1, 0);
+  for (std::int64_t t = 0; t < count; ++t)
+  {
+    const std::int64_t root = pieces.Find(t);
+    stray[t] = !kept[root];
+    strayRoot[root] |= stray[t];
+  }
+  // From the rim inwards: a stray tet next to a settled one takes its best neighbouring class.
+  std::vector<std::int64_t> rim;
+  for (std::int64_t t = 0; t < count; ++t)
+    if (stray[t] && std::any_of(across[t].begin(), across[t].end(), [&](std::int64_t n) { return n >= 0 && !stray[n]; }))
+      rim.push_back(t);
+  std::vector<char> queued(stray.begin(), stray.end());
+  for (const std::int64_t t : rim)
+    queued[t] = 2;
+  for (std::size_t next = 0; next < rim.size(); ++next)
+  {
+    const std::int64_t t = rim[next];
+    std::int32_t to = classes[t];
+    std::int64_t most = -1;
+    for (const std::int64_t n : across[t])
+      if (n >= 0 && !stray[n] && classes[n] != classes[t] && votes(t, classes[n]) > most)
+      {
+        most = votes(t, classes[n]);
+        to = classes[n];
+      }
+    if (most < 0 && std::find(across[t].begin(), across[t].end(), -1) != across[t].end())
+      to = background; // only the outside around it
+    stray[t] = 0;
+    if (to != classes[t])
+    {
+      classes[t] = to;
+      changed.push_back(t);
+    }
+    for (const std::int64_t n : across[t])
+      if (n >= 0 && queued[n] == 1)
+      {
+        queued[n] = 2;
+        rim.push_back(n);
+      }
+  }
+  return std::count(strayRoot.begin(), strayRoot.end(), 1);
+}
+} // namespace cbc3d

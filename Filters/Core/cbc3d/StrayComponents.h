@@ -1,0 +1,32 @@
+#ifndef cbc3d_StrayComponents_h
+#define cbc3d_StrayComponents_h
+
+#include "cbc3d/ManifoldRepair.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace cbc3d
+{
+/// The image's components as the mesh should keep them: each voxel's component (-1 for none to
+/// keep: too small, or the background on the image border, which the outside stands for) and
+/// each component's class.
+struct ImageRegions
+{
+  std::vector<std::int32_t> RegionOfVoxel;
+  std::vector<std::int32_t> ClassOfRegion;
+};
+
+/// Gives away the face-connected pieces of a class (tissue or background) that stand for no
+/// component of the image: a piece stands for an image component when it holds the most of its
+/// voxels (`voxelOwner`: the tet owning each voxel centre, or -1); the background's piece that
+/// reaches the mesh boundary is the outside and always stays. A piece given away goes tet by
+/// tet, from its rim inwards, to the neighbouring class each tet holds most votes of. Appends
+/// the tets relabelled to `changed`; returns how many pieces went.
+std::int64_t RemoveStrayComponents(const std::vector<Tet>& tets,
+  const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
+  const ClassVotes& votes, const std::vector<std::int32_t>& voxelOwner, const ImageRegions& regions,
+  std::vector<std::int32_t>& classes, std::vector<std::int64_t>& changed);
+} // namespace cbc3d
+
+#endif
