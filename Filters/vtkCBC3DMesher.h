@@ -62,7 +62,7 @@ public:
 
   ///@{
   /**
-   * Deformation targets at boundary voxel centres (0, default) or on the label boundary (1);
+   * Deformation targets at boundary voxel centres (0) or on the label boundary (1, default);
    * see vtkCBC3DDeformation::TargetPlacement.
    */
   vtkSetClampMacro(TargetPlacement, int, 0, 1);
@@ -81,7 +81,7 @@ protected:
   double BoundaryDistance = 0.0;
   int Iterations = 5;
   int Pattern = 1;
-  int TargetPlacement = 0;
+  int TargetPlacement = 1; // vtkCBC3DDeformation::VOXEL_FACE
 
 private:
   vtkCBC3DMesher(const vtkCBC3DMesher&) = delete;

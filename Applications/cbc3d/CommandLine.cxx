@@ -50,9 +50,9 @@ Mesh a 3-D label image into a conforming multi-tissue tetrahedral mesh (CBC3D).
                       measure); default 0 = 3/8 of the lattice size; negative = none
   --pattern P         target-point pattern for deformation: vertex, edge, face, none
                       (default edge)
-  --targets T         where deformation targets sit: centre (default; the paper's
-                      boundary voxel centres) or face (on the label boundary: tissues
-                      keep their volumes better, at a larger Hausdorff distance)
+  --targets T         where deformation targets sit: face (default; on the label
+                      boundary: tissues keep their volumes) or centre (the paper's
+                      boundary voxel centres: about half a voxel of depth is lost)
   --iterations N      deformation iterations (default 5; 0 = no deformation)
   --background L      a label that is not tissue; repeat for several (default 0)
   --threads N         threads (default 0 = all cores)

@@ -13,7 +13,7 @@ struct CommandLineOptions
   double Fidelity = 0.95;  // 0 = no refinement
   double BoundaryDistance = 0.0; // mm; 0 = 3/8 of the lattice size, negative = none
   std::string Pattern = "edge";
-  std::string Targets = "centre"; // where deformation targets sit: centre or face
+  std::string Targets = "face";   // where deformation targets sit: centre or face
   int Iterations = 5;      // 0 = no deformation
   std::vector<int> BackgroundLabels = { 0 };
   int Threads = 0;         // 0 = all cores

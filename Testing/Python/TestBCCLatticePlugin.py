@@ -132,8 +132,9 @@ check(final.GetNumberOfCells() > 0 and fields.GetArray("InvertedTetCount").GetVa
 check(fields.GetArray("HausdorffDistance") is not None and fields.GetArray("FidelityF1") is not None, "one-shot figures")
 check([p.GetXMLLabel() for p in [oneshot.GetProperty(n) for n in ("LatticeSize", "Fidelity", "Iterations")]] ==
       ["Lattice Size", "Fidelity", "Deformation Iterations"], "one-shot property labels")
-oneshot.TargetPlacement = "Voxel Face"
-check("TargetPlacement: 1" in str(oneshot.GetClientSideObject()), "one-shot TargetPlacement reaches the filter")
+check("TargetPlacement: 1" in str(oneshot.GetClientSideObject()), "one-shot TargetPlacement defaults to Voxel Face")
+oneshot.TargetPlacement = "Voxel Centre"
+check("TargetPlacement: 0" in str(oneshot.GetClientSideObject()), "one-shot TargetPlacement reaches the filter")
 oneshot.UpdatePipeline()
 check(servermanager.Fetch(oneshot).GetFieldData().GetArray("InvertedTetCount").GetValue(0) == 0,
       "one-shot mesh with targets on the label boundary, no inverted tet")

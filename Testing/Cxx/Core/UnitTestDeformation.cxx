@@ -221,7 +221,9 @@ TEST(Deformation, CoarseBallEndsOnItsSphere)
   // depth under the sphere within a quarter voxel of theirs); and no vertex ends more than half
   // a voxel outside the sphere, or deeper inside than the deepest voxel centre (one voxel)
   // plus half a voxel.
-  const cbc3d::TetMesh mesh = DeformedBall(image);
+  cbc3d::DeformationParams atCentres; // the paper's targets (the default is on faces)
+  atCentres.Placement = cbc3d::TargetPlacement::VoxelCentre;
+  const cbc3d::TetMesh mesh = DeformedBall(image, atCentres);
   const auto surfaceByTissue = cbc3d::TissueSurfaceVertices(mesh);
   const auto& surface = surfaceByTissue.at(1);
   double farthestFromVoxels = 0.0, deepest = 0.0, outermost = -1e9, vertexDepth = 0.0, voxelDepth = 0.0;
@@ -305,10 +307,12 @@ TEST(Deformation, FaceTargetsKeepTheBallsVolume)
       depth += ((mesh.Points[v] - centre).norm() - 11.0) / double(surfaceByTissue.at(1).size());
     return std::make_pair(CentroidAndVolume(mesh).second, depth);
   };
-  const auto atCentres = volumeAndDepth(DeformedBall(image));
   cbc3d::DeformationParams params;
+  params.Placement = cbc3d::TargetPlacement::VoxelCentre;
+  const auto atCentres = volumeAndDepth(DeformedBall(image, params));
   params.Placement = cbc3d::TargetPlacement::VoxelFace;
   const auto atFaces = volumeAndDepth(DeformedBall(image, params));
+  EXPECT_EQ(cbc3d::DeformationParams().Placement, cbc3d::TargetPlacement::VoxelFace); // the default
   EXPECT_LT(atCentres.first / voxels, atFaces.first / voxels);
   EXPECT_LT(std::abs(atFaces.second), std::abs(atCentres.second));
   EXPECT_NEAR(atFaces.second, 0.0, 0.15);

@@ -71,7 +71,9 @@ int TestCBC3DDeformation(int, char*[])
   deformation->Print(printed);
   CHECK(printed.str().find("Pattern: Face") != std::string::npos);
   CHECK(std::string(deformation->GetPatternAsString()) == "Face");
-  CHECK(printed.str().find("TargetPlacement: VoxelCentre") != std::string::npos);
+  CHECK(printed.str().find("TargetPlacement: VoxelFace") != std::string::npos); // the default
+  deformation->SetTargetPlacementToVoxelCentre();
+  CHECK(std::string(deformation->GetTargetPlacementAsString()) == "VoxelCentre");
   deformation->SetTargetPlacementToVoxelFace();
   CHECK(std::string(deformation->GetTargetPlacementAsString()) == "VoxelFace");
 
