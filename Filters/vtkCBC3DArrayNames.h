@@ -16,7 +16,7 @@
  * `DeformationSources`, `DeformationTargets`.
  *
  * Field data (vtkCBC3DRefinement): `RefinementPasses`, `RefinementStopReason`,
- * `RefinementBoundaryDistance`, `RefinementBoundaryGap`, and per tissue
+ * `RefinementBoundaryDistance`, `RefinementBoundaryGap`, `RefinementRelabelledTets`, and per tissue
  * `FidelityLabel`, `FidelityF1`, `FidelityF2`, `FidelityComponents`, `FidelityComponentsInMesh`.
  *
  * Field data (vtkCBC3DMeshQuality; its class comment says what each holds): over the whole
@@ -51,6 +51,7 @@ constexpr const char* RefinementPasses = "RefinementPasses";
 constexpr const char* RefinementStopReason = "RefinementStopReason";
 constexpr const char* RefinementBoundaryDistance = "RefinementBoundaryDistance";
 constexpr const char* RefinementBoundaryGap = "RefinementBoundaryGap";
+constexpr const char* RefinementRelabelledTets = "RefinementRelabelledTets";
 constexpr const char* Displacement = "Displacement";
 constexpr const char* DeformationIterations = "DeformationIterations";
 constexpr const char* DeformationStopReason = "DeformationStopReason";

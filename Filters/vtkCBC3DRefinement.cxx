@@ -42,6 +42,7 @@ int vtkCBC3DRefinement::RequestData(
   params.MinimumEdgeLength = this->MinimumEdgeLength;
   params.MinimumComponentVoxels = this->MinimumComponentVoxels;
   params.BoundaryDistance = this->BoundaryDistance;
+  params.SoundLabels = this->SoundLabels;
   params.NumberOfThreads = this->NumberOfThreads;
   cbc3d::TetMesh mesh;
   cbc3d::RefinementResult result;
@@ -77,6 +78,10 @@ int vtkCBC3DRefinement::RequestData(
   boundaryGap->SetName(names::RefinementBoundaryGap);
   boundaryGap->InsertNextValue(result.LargestBoundaryGap);
   fields->AddArray(boundaryGap);
+  vtkNew<vtkIdTypeArray> relabelled;
+  relabelled->SetName(names::RefinementRelabelledTets);
+  relabelled->InsertNextValue(result.Relabelled);
+  fields->AddArray(relabelled);
   vtkNew<vtkIntArray> label;
   label->SetName(names::FidelityLabel);
   vtkNew<vtkDoubleArray> f1, f2;
@@ -112,4 +117,5 @@ void vtkCBC3DRefinement::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BoundaryDistance: " << this->BoundaryDistance << " mm"
      << (this->BoundaryDistance == 0 ? " (3/8 of the longest edge)" : this->BoundaryDistance < 0 ? " (none)" : "")
      << "\n";
+  os << indent << "SoundLabels: " << (this->SoundLabels ? "on" : "off") << "\n";
 }

@@ -17,13 +17,17 @@
  * is split red, and a green tet is never split (its red parent is). Refinement ends when every
  * tissue reaches Fidelity and BoundaryDistance, or no tet may be split without making edges
  * shorter than MinimumEdgeLength. Every 6-connected tissue component of at least MinimumComponentVoxels
- * voxels keeps at least one tet of its tissue. Tets labelled background are dropped.
+ * voxels keeps at least one tet of its tissue. Then (SoundLabels) tets are relabelled so that no
+ * tet hangs on an edge or a vertex, every tissue surface and interface is a 2-manifold, and no
+ * tissue or background piece stands for nothing in the image. Tets labelled background are
+ * dropped.
  *
  * Output: the refined mesh, conforming, every tet positively oriented; cell data `Label`
  * (vtkIntArray) and `RefinementLevel` (vtkUnsignedCharArray: 0 for lattice tets, +1 per red
  * split); field data `RefinementPasses` (vtkIntArray), `RefinementStopReason` (vtkStringArray),
  * `RefinementBoundaryDistance` (the bound used, mm; 0 when none) and `RefinementBoundaryGap`
  * (the farthest boundary voxel from the predicted surface, mm) (vtkDoubleArray),
+ * `RefinementRelabelledTets` (tets relabelled for sound labels) (vtkIdTypeArray),
  * and per tissue in ascending label order `FidelityLabel` (vtkIntArray), `FidelityF1`,
  * `FidelityF2` (vtkDoubleArray), `FidelityComponents`, `FidelityComponentsInMesh`
  * (vtkIdTypeArray).
@@ -83,6 +87,18 @@ public:
   vtkGetMacro(MinimumComponentVoxels, int);
   ///@}
 
+  ///@{
+  /**
+   * Relabel tets at the end so that the mesh is a sound finite-element model (default on): no
+   * tet hangs on an edge or a vertex, every tissue surface and interface is a 2-manifold, and no
+   * tissue has a piece (or a cavity) that the image lacks. Off leaves the majority labels, for
+   * comparison.
+   */
+  vtkSetMacro(SoundLabels, bool);
+  vtkGetMacro(SoundLabels, bool);
+  vtkBooleanMacro(SoundLabels, bool);
+  ///@}
+
 protected:
   vtkCBC3DRefinement();
   ~vtkCBC3DRefinement() override = default;
@@ -94,6 +110,7 @@ protected:
   double MinimumEdgeLength = 0.0;
   double BoundaryDistance = 0.0;
   int MinimumComponentVoxels = 8;
+  bool SoundLabels = true;
 
 private:
   vtkCBC3DRefinement(const vtkCBC3DRefinement&) = delete;

@@ -24,6 +24,8 @@ constexpr std::int64_t StepCost = 1;
 // Repairs in one visit, and visits, before a vertex's whole star takes one class.
 constexpr int RoundsPerVisit = 6;
 constexpr int VisitsBeforeFallback = 3;
+// How far (in tets) to look for a join of two parts elsewhere before joining them here.
+constexpr std::size_t JoinSearchTets = 2000;
 
 // The tets around one vertex as a graph: two are linked when they share a face through the
 // vertex. Each face on the mesh boundary through the vertex is an outside node, linked to its
@@ -158,6 +160,7 @@ private:
   std::int64_t Path(const Star& star, const std::vector<int>& from, const std::vector<char>& through,
     const std::vector<char>& goal, std::int32_t to, std::vector<int>& path) const;
   void Relabel(Star& star, int node, std::int32_t to, std::vector<std::int64_t>& changed);
+  bool JoinedNearby(const Star& star, const std::vector<int>& part, int keeper, int spare, std::int32_t cls);
   void RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed);
   void RepairRing(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed);
   void Unify(Star& star, std::vector<std::int64_t>& changed);
@@ -441,6 +444,45 @@ void Repairer::Relabel(Star& star, int node, std::int32_t to, std::vector<std::i
   changed.push_back(star.Tets[node]);
 }
 
+// Whether the class's tets join the spare part to the keeper through faces within a short walk
+// (a bounded breadth-first search from the spare part's tets).
+bool Repairer::JoinedNearby(const Star& star, const std::vector<int>& part, int keeper, int spare,
+  std::int32_t cls)
+{
+  constexpr int Visited = -2, Goal = -3;
+  std::vector<std::int64_t> queue;
+  for (int node = 0; node < static_cast<int>(star.Tets.size()); ++node)
+  {
+    if (part[node] == spare)
+      queue.push_back(star.Tets[node]);
+    else if (part[node] == keeper)
+      this->LocalOf[star.Tets[node]] = Goal;
+  }
+  for (const std::int64_t t : queue)
+    this->LocalOf[t] = Visited;
+  bool joined = false;
+  for (std::size_t next = 0; next < queue.size() && next < JoinSearchTets && !joined; ++next)
+  {
+    for (const std::int64_t n : this->Across[queue[next]])
+    {
+      if (n < 0 || this->Classes[n] != cls || this->LocalOf[n] == Visited)
+        continue;
+      if (this->LocalOf[n] == Goal)
+      {
+        joined = true;
+        break;
+      }
+      this->LocalOf[n] = Visited;
+      queue.push_back(n);
+    }
+  }
+  for (const std::int64_t t : queue)
+    this->LocalOf[t] = -1;
+  for (int node = 0; node < static_cast<int>(star.Tets.size()); ++node)
+    this->LocalOf[star.Tets[node]] = -1;
+  return joined;
+}
+
 // A class in several parts around the vertex: the part it can best spare is either joined to
 // the part it values most, or given to its neighbours, whichever costs fewer votes.
 void Repairer::RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed)
@@ -490,8 +532,9 @@ void Repairer::RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_
     goal[node] = part[node] == spare;
     through[node] = part[node] < 0;
   }
+  // Parts that the class already joins elsewhere would close a loop here: a handle.
   const std::int64_t joinCost = this->Path(star, from, through, goal, cls, path);
-  if (joinCost < giveCost)
+  if (joinCost < giveCost && !this->JoinedNearby(star, part, keeper, spare, cls))
   {
     for (const int node : path)
       this->Relabel(star, node, cls, changed);
@@ -557,9 +600,13 @@ void Repairer::RepairRing(Star& star, std::int32_t cls, std::vector<std::int64_t
 void Repairer::Unify(Star& star, std::vector<std::int64_t>& changed)
 {
   std::int32_t best = this->Background;
-  for (int node = 0; node < star.Nodes(); ++node)
-    if (this->Rank(star.Class[node]) > this->Rank(best))
-      best = star.Class[node];
+  bool pinned = false;
+  for (int node = 0; node < star.Nodes() && !pinned; ++node)
+  {
+    pinned = star.IsTet(node) && this->VotesOf(star, node, star.Class[node]) >= PinnedVotes;
+    if (pinned || this->Rank(star.Class[node]) > this->Rank(best))
+      best = star.Class[node]; // a pinned tet's class wins outright
+  }
   for (int node = 0; node < star.Nodes(); ++node)
     if (star.IsTet(node) && star.Class[node] != best)
       this->Relabel(star, node, best, changed);
@@ -595,6 +642,7 @@ void Repairer::RepairStar(PointId v, int visit, std::vector<std::int64_t>& chang
       return;
     }
   }
+  ++result.Fallbacks;
   this->Unify(star, changed);
 }
 } // namespace

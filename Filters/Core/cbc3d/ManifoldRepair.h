@@ -17,10 +17,14 @@ std::vector<std::array<std::int64_t, 4>> FaceNeighbours(const std::vector<Tet>& 
 /// a to b costs Votes(tet, a) - Votes(tet, b).
 using ClassVotes = std::function<std::int64_t(std::int64_t tet, std::int32_t cls)>;
 
+/// Votes of at least this much pin a tet to its class: even the last resort keeps it.
+constexpr std::int64_t PinnedVotes = std::int64_t(1) << 48;
+
 struct ManifoldRepairResult
 {
   std::int64_t Relabelled = 0; // tet relabellings (a tet may count more than once)
   std::int64_t Repairs = 0;    // vertex stars repaired
+  std::int64_t Fallbacks = 0;  // of them, stars that took one class (the last resort)
   std::int64_t Unrepaired = 0; // vertices still not manifold (0 unless the work bound was hit)
 };
 

@@ -130,6 +130,44 @@ bool IsSmall(const TissueComponents& components, std::int32_t component, int min
 {
   return components.Size[component] < minimumVoxels;
 }
+
+// A component still missing (at the minimum edge length) gets the tet holding most of it; that
+// tet, and the tets of a component that only one or two tets stand for, are pinned to its label
+// (tet -> label) so that making the labels sound does not lose the component.
+std::map<std::int64_t, std::int32_t> PinComponents(const LabelImage& image,
+  const TissueComponents& components, int minimumVoxels, LabelledMesh& mesh,
+  const std::vector<char>& componentInMesh)
+{
+  constexpr std::size_t FewTets = 2;
+  std::map<std::int32_t, std::map<std::int32_t, std::int64_t>> holders; // component -> tet -> voxels
+  for (std::size_t v = 0; v < image.Labels.size(); ++v)
+  {
+    const std::int32_t component = components.ComponentOfVoxel[v], owner = mesh.VoxelOwner[v];
+    if (component >= 0 && owner >= 0 && !IsSmall(components, component, minimumVoxels) &&
+      (!componentInMesh[component] || mesh.Labels[owner] == components.Label[component]))
+    {
+      ++holders[component][owner];
+    }
+  }
+  std::map<std::int64_t, std::int32_t> pinned;
+  for (const auto& [component, tets] : holders)
+  {
+    const std::int32_t label = components.Label[component];
+    if (!componentInMesh[component])
+    {
+      const auto best = std::max_element(tets.begin(), tets.end(),
+        [](const auto& a, const auto& b) { return a.second < b.second; }); // first of equals wins
+      mesh.Labels[best->first] = label;
+      pinned[best->first] = label;
+    }
+    else if (tets.size() <= FewTets)
+    {
+      for (const auto& entry : tets)
+        pinned[entry.first] = label;
+    }
+  }
+  return pinned;
+}
 } // namespace
 
 Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params,
@@ -323,31 +361,17 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
     fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
   }
 
-  // A component still missing (at the minimum edge length) gets the tet holding most of it.
-  std::map<std::int32_t, std::map<std::int32_t, std::int64_t>> holders; // component -> tet -> voxels
-  for (std::size_t v = 0; v < image.Labels.size(); ++v)
-  {
-    const std::int32_t component = components.ComponentOfVoxel[v];
-    if (component >= 0 && !componentInMesh[component] &&
-      !IsSmall(components, component, params.MinimumComponentVoxels) && mesh.VoxelOwner[v] >= 0)
-    {
-      ++holders[component][mesh.VoxelOwner[v]];
-    }
-  }
-  std::map<std::int64_t, std::int32_t> pinned; // tet -> the component's label
-  for (const auto& [component, tets] : holders)
-  {
-    const auto best = std::max_element(tets.begin(), tets.end(),
-      [](const auto& a, const auto& b) { return a.second < b.second; }); // first of equals wins
-    mesh.Labels[best->first] = components.Label[component];
-    pinned[best->first] = components.Label[component];
-  }
+  const std::map<std::int64_t, std::int32_t> pinned =
+    PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
   // No hinge, no non-manifold surface, no piece the image does not have.
-  const SoundLabelsResult sound = MakeLabelsSound(image, components, params.MinimumComponentVoxels,
-    hierarchy.Points(), mesh.Tets, mesh.Counts, mesh.VoxelOwner, pinned, NoLabel, mesh.Labels);
-  result.Relabelled = sound.Relabelled;
-  result.UnrepairedVertices = sound.Unrepaired;
-  if (!holders.empty() || sound.Relabelled > 0)
+  if (params.SoundLabels)
+  {
+    const SoundLabelsResult sound = MakeLabelsSound(image, components, params.MinimumComponentVoxels,
+      hierarchy.Points(), mesh.Tets, mesh.Counts, mesh.VoxelOwner, pinned, NoLabel, mesh.Labels);
+    result.Relabelled = sound.Relabelled;
+    result.UnrepairedVertices = sound.Unrepaired;
+  }
+  if (!pinned.empty() || result.Relabelled > 0)
   {
     fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
   }

@@ -30,6 +30,9 @@ struct RefinementParams
   /// from every boundary voxel of its tissue to reach it is split red. 0 = automatic: 3/8 of the
   /// longest edge of the mesh to refine (3 mm for an 8 mm BCC lattice); negative = no such bound.
   double BoundaryDistance = 0.0;
+  /// Relabel tets at the end so that the mesh is a sound FE model (no hinge, manifold tissue
+  /// surfaces, no piece the image lacks: see SoundLabels.h); false leaves the majority labels.
+  bool SoundLabels = true;
   /// OpenMP threads; 0 = all cores.
   int NumberOfThreads = 0;
   /// Stop refining before the mesh would need more memory than this (bytes); 0 = half the machine.

@@ -3,30 +3,40 @@
 #include "cbc3d/ManifoldRepair.h"
 #include "cbc3d/StrayComponents.h"
 
+#include <algorithm>
+
 namespace cbc3d
 {
 namespace
 {
-// Pinned tets outweigh any voxel count.
-constexpr std::int64_t PinnedVotes = std::int64_t(1) << 48;
 // Rounds of stray removal, each followed by repairs around what it changed.
 constexpr int CleanupRounds = 4;
 
+// The image components the mesh should keep; the background's cavities only when asked (their
+// flood fill is the costly part, and most meshes have no cavity to check).
 ImageRegions KeptRegions(const LabelImage& image, const TissueComponents& tissues, int minimumVoxels,
-  std::int32_t background)
+  std::int32_t background, bool withCavities)
 {
-  const BackgroundComponents gaps = FindBackgroundComponents(image);
+  const BackgroundComponents gaps = withCavities ? FindBackgroundComponents(image) : BackgroundComponents();
   ImageRegions regions;
   const std::int32_t tissueCount = static_cast<std::int32_t>(tissues.Label.size());
   for (std::int32_t c = 0; c < tissueCount; ++c)
     regions.ClassOfRegion.push_back(tissues.Label[c]);
   for (std::size_t c = 0; c < gaps.Size.size(); ++c)
     regions.ClassOfRegion.push_back(background);
+  // A tissue all of whose components are small keeps its largest, rather than vanishing.
+  std::map<std::int32_t, std::int64_t> keptSize;
+  for (std::int32_t c = 0; c < tissueCount; ++c)
+    keptSize[tissues.Label[c]] = std::max(keptSize[tissues.Label[c]], tissues.Size[c]);
+  std::vector<char> kept(tissueCount);
+  for (std::int32_t c = 0; c < tissueCount; ++c)
+    kept[c] = tissues.Size[c] >= std::min<std::int64_t>(keptSize[tissues.Label[c]], minimumVoxels);
   regions.RegionOfVoxel.assign(image.Labels.size(), -1);
   for (std::size_t v = 0; v < image.Labels.size(); ++v)
   {
-    const std::int32_t tissue = tissues.ComponentOfVoxel[v], gap = gaps.ComponentOfVoxel[v];
-    if (tissue >= 0 && tissues.Size[tissue] >= minimumVoxels)
+    const std::int32_t tissue = tissues.ComponentOfVoxel[v];
+    const std::int32_t gap = withCavities ? gaps.ComponentOfVoxel[v] : -1;
+    if (tissue >= 0 && kept[tissue])
       regions.RegionOfVoxel[v] = tissue;
     else if (gap >= 0 && !gaps.TouchesBorder[gap] && gaps.Size[gap] >= minimumVoxels)
       regions.RegionOfVoxel[v] = tissueCount + gap;
@@ -62,7 +72,9 @@ SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponent
   SoundLabelsResult result;
   ManifoldRepairResult repair = RepairManifoldLabels(points, tets, across, background, votes, classes);
   result.Repairs += repair.Repairs;
-  const ImageRegions regions = KeptRegions(image, components, minimumVoxels, background);
+  result.Fallbacks += repair.Fallbacks;
+  const ImageRegions regions = KeptRegions(image, components, minimumVoxels, background,
+    HasEnclosedBackground(tets, across, background, classes));
   for (int round = 0; round < CleanupRounds; ++round)
   {
     std::vector<std::int64_t> changed;
@@ -74,6 +86,7 @@ SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponent
     }
     repair = RepairManifoldLabels(points, tets, across, background, votes, classes, VerticesOf(tets, changed));
     result.Repairs += repair.Repairs;
+    result.Fallbacks += repair.Fallbacks;
   }
   result.Unrepaired = repair.Unrepaired;
   for (std::size_t t = 0; t < labels.size(); ++t)

@@ -16,6 +16,7 @@ struct SoundLabelsResult
 {
   std::int64_t Relabelled = 0;  // tets whose label changed
   std::int64_t Repairs = 0;     // vertex stars mended
+  std::int64_t Fallbacks = 0;   // of them, stars given one class as the last resort
   std::int64_t StrayPieces = 0; // pieces that stood for no image component, given away
   std::int64_t Unrepaired = 0;  // vertices still not manifold (0 unless a work bound was hit)
 };
@@ -25,7 +26,8 @@ struct SoundLabelsResult
 /// the body as a whole are manifold at every vertex (no hinge, no non-manifold edge or vertex
 /// on any boundary or interface: see ManifoldRepair.h), and every face-connected piece of a
 /// tissue or of the background stands for a 6-connected component of the image of at least
-/// `minimumVoxels` voxels (other pieces: islands, cavities, the cut-off ends of a pinch, are
+/// `minimumVoxels` voxels, or of the tissue's largest where all its components are smaller
+/// (other pieces: islands, cavities, the cut-off ends of a pinch, are
 /// given to their neighbours: see StrayComponents.h). Relabelling is by voxel votes (`counts`);
 /// tets in `pinned` (tet -> label: the tets that stand for a component refinement could not
 /// reach) keep their label unless nothing else works. Returns what it did.

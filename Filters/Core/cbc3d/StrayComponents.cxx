@@ -135,4 +135,15 @@ std::int64_t RemoveStrayComponents(const std::vector<Tet>& tets,
   }
   return std::count(strayRoot.begin(), strayRoot.end(), 1);
 }
+bool HasEnclosedBackground(const std::vector<Tet>& tets,
+  const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
+  const std::vector<std::int32_t>& classes)
+{
+  DisjointSets pieces = FindPieces(tets, across, background, classes);
+  const std::int64_t outside = pieces.Find(static_cast<std::int64_t>(tets.size()));
+  for (std::size_t t = 0; t < tets.size(); ++t)
+    if (classes[t] == background && pieces.Find(static_cast<std::int64_t>(t)) != outside)
+      return true;
+  return false;
+}
 } // namespace cbc3d

@@ -27,6 +27,11 @@ std::int64_t RemoveStrayComponents(const std::vector<Tet>& tets,
   const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
   const ClassVotes& votes, const std::vector<std::int32_t>& voxelOwner, const ImageRegions& regions,
   std::vector<std::int32_t>& classes, std::vector<std::int64_t>& changed);
+/// Whether some face-connected piece of the background does not reach the mesh boundary (a
+/// cavity, which only a cavity of the image may justify).
+bool HasEnclosedBackground(const std::vector<Tet>& tets,
+  const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
+  const std::vector<std::int32_t>& classes);
 } // namespace cbc3d
 
 #endif

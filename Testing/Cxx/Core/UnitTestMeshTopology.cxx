@@ -1,6 +1,6 @@
 // Topology of meshes and of label images, on shapes whose answers are known by hand.
 #include "cbc3d/MeshTopology.h"
-#include "cbc3d/TetGeometry.h"
+#include "TestMeshes.h"
 
 #include <gtest/gtest.h>
 
@@ -10,61 +10,9 @@ namespace
 {
 using cbc3d::RegionTopology;
 
-// Appends a tet over new points, positively oriented.
-void AddTet(cbc3d::TetMesh& mesh, cbc3d::Tet tet, std::int32_t label = 1)
-{
-  const auto& p = mesh.Points;
-  if (cbc3d::SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) < 0)
-    std::swap(tet[1], tet[2]);
-  mesh.Tets.push_back(tet);
-  mesh.Labels.push_back(label);
-}
-
-// The unit tet 0..3, plus the points of a second tet as the tests below need them.
-cbc3d::TetMesh OneTet()
-{
-  cbc3d::TetMesh mesh;
-  mesh.Points = { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 } };
-  AddTet(mesh, { 0, 1, 2, 3 });
-  return mesh;
-}
-
-// The cubes (x, y, z) of a grid for which `solid` holds, each split into the six Kuhn tets along
-// its diagonal from (x, y, z); one diagonal direction everywhere makes neighbouring cubes
-// conform. `labelOf(x, y, z, tet)` labels tet 0..5 of a cube, in cyclic order around the
-// diagonal (consecutive ones share a face).
-template <typename Solid, typename LabelOf>
-cbc3d::TetMesh KuhnGrid(int nx, int ny, int nz, Solid solid, LabelOf labelOf)
-{
-  cbc3d::TetMesh mesh;
-  auto id = [&](int x, int y, int z) { return cbc3d::PointId(x + (nx + 1) * (y + (ny + 1) * z)); };
-  for (int z = 0; z <= nz; ++z)
-    for (int y = 0; y <= ny; ++y)
-      for (int x = 0; x <= nx; ++x)
-        mesh.Points.emplace_back(x, y, z);
-  // Axis orders around the diagonal: x y z, y x z, y z x, z y x, z x y, x z y.
-  const int orders[6][3] = { { 0, 1, 2 }, { 1, 0, 2 }, { 1, 2, 0 }, { 2, 1, 0 }, { 2, 0, 1 }, { 0, 2, 1 } };
-  for (int z = 0; z < nz; ++z)
-    for (int y = 0; y < ny; ++y)
-      for (int x = 0; x < nx; ++x)
-      {
-        if (!solid(x, y, z))
-          continue;
-        for (int t = 0; t < 6; ++t)
-        {
-          std::array<int, 3> at = { x, y, z };
-          cbc3d::Tet tet;
-          tet[0] = id(at[0], at[1], at[2]);
-          for (int step = 0; step < 3; ++step)
-          {
-            ++at[orders[t][step]];
-            tet[step + 1] = id(at[0], at[1], at[2]);
-          }
-          AddTet(mesh, tet, labelOf(x, y, z, t));
-        }
-      }
-  return mesh;
-}
+using cbc3d::testing::AddTet;
+using cbc3d::testing::KuhnGrid;
+using cbc3d::testing::OneTet;
 
 void ExpectManifoldBall(const RegionTopology& r, std::int64_t triangles)
 {

@@ -1,0 +1,148 @@
+// The manifold repair on voxel patterns whose cubes are split into tets: each cube votes for
+// its voxel's label, so the pattern's hinges (cubes meeting along an edge or at a corner) are
+// the mesh's before the repair. After it, the topology measure (MeshTopology, written apart
+// from the repair) must find every tissue and the whole body manifold.
+#include "cbc3d/ManifoldRepair.h"
+#include "cbc3d/MeshTopology.h"
+
+#include "TestMeshes.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+
+namespace
+{
+using cbc3d::testing::KuhnGrid;
+using Pattern = std::function<std::int32_t(int, int, int)>;
+constexpr std::int32_t Background = 0;
+
+struct Repaired
+{
+  cbc3d::TetMesh Before;                       // every cube of the box, labelled by the pattern
+  std::vector<std::int32_t> Classes;           // after the repair
+  cbc3d::ManifoldRepairResult Result;
+  std::int64_t NonManifoldBefore = 0, NonManifoldAfter = 0;
+};
+
+// The tissue tets alone, as the pipeline hands them on.
+cbc3d::TetMesh TissueOnly(const cbc3d::TetMesh& mesh, const std::vector<std::int32_t>& classes)
+{
+  cbc3d::TetMesh out;
+  out.Points = mesh.Points;
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+    if (classes[t] != Background)
+    {
+      out.Tets.push_back(mesh.Tets[t]);
+      out.Labels.push_back(classes[t]);
+    }
+  return out;
+}
+
+// `present` tells which cubes are in the mesh at all (a lattice may leave some out).
+Repaired Repair(int n, const Pattern& pattern, const std::function<bool(int, int, int)>& present = nullptr)
+{
+  Repaired r;
+  std::vector<std::int32_t> cubeLabel;
+  r.Before = KuhnGrid(
+    n, n, n, [&](int x, int y, int z) { return !present || present(x, y, z); },
+    [&](int x, int y, int z, int tet) {
+      if (tet == 0)
+        cubeLabel.push_back(pattern(x, y, z));
+      return pattern(x, y, z);
+    });
+  r.Classes = r.Before.Labels;
+  const auto across = cbc3d::FaceNeighbours(r.Before.Tets, r.Before.Points.size());
+  const cbc3d::ClassVotes votes = [&](std::int64_t t, std::int32_t cls) {
+    return std::int64_t(cubeLabel[t / 6] == cls ? 6 : 0);
+  };
+  r.NonManifoldBefore = cbc3d::CountNonManifoldVertices(r.Before.Points, r.Before.Tets, across, Background, r.Classes);
+  r.Result = cbc3d::RepairManifoldLabels(r.Before.Points, r.Before.Tets, across, Background, votes, r.Classes);
+  r.NonManifoldAfter = cbc3d::CountNonManifoldVertices(r.Before.Points, r.Before.Tets, across, Background, r.Classes);
+  return r;
+}
+
+void ExpectManifold(const cbc3d::RegionTopology& r, const char* what)
+{
+  EXPECT_EQ(r.HingedParts, 0) << what;
+  EXPECT_EQ(r.NonManifoldEdges, 0) << what;
+  EXPECT_EQ(r.NonManifoldVertices, 0) << what;
+}
+
+void ExpectSound(const Repaired& r)
+{
+  EXPECT_EQ(r.NonManifoldAfter, 0);
+  EXPECT_EQ(r.Result.Unrepaired, 0);
+  const cbc3d::MeshTopology topology = cbc3d::MeasureMeshTopology(TissueOnly(r.Before, r.Classes));
+  ExpectManifold(topology.Whole, "whole");
+  for (const auto& [label, tissue] : topology.Tissues)
+    ExpectManifold(tissue, "tissue");
+  EXPECT_TRUE(topology.SolverReady());
+}
+
+bool Inside(int x, int y, int z, int lo, int hi)
+{
+  return x >= lo && x < hi && y >= lo && y < hi && z >= lo && z < hi;
+}
+} // namespace
+
+TEST(ManifoldRepair, ASolidBlockIsLeftAlone)
+{
+  const Repaired r = Repair(5, [](int x, int y, int z) { return Inside(x, y, z, 1, 4) ? 1 : 0; });
+  EXPECT_EQ(r.NonManifoldBefore, 0);
+  EXPECT_EQ(r.Result.Relabelled, 0);
+  ExpectSound(r);
+}
+
+TEST(ManifoldRepair, CubesOnOneEdgeNoLongerHinge)
+{
+  const Repaired r = Repair(4, [](int x, int y, int z) {
+    return (x == 1 && y == 1 && z == 1) || (x == 2 && y == 2 && z == 1) ? 1 : 0;
+  });
+  // Before: two pieces joined only along the edge they share.
+  EXPECT_EQ(cbc3d::MeasureMeshTopology(TissueOnly(r.Before, r.Before.Labels)).Whole.HingedParts, 1);
+  EXPECT_GT(r.NonManifoldBefore, 0);
+  ExpectSound(r);
+}
+
+TEST(ManifoldRepair, CubesOnOneCornerNoLongerHinge)
+{
+  const Repaired r = Repair(4, [](int x, int y, int z) {
+    return (x == 1 && y == 1 && z == 1) || (x == 2 && y == 2 && z == 2) ? 1 : 0;
+  });
+  EXPECT_EQ(cbc3d::MeasureMeshTopology(TissueOnly(r.Before, r.Before.Labels)).Whole.HingedParts, 1);
+  ExpectSound(r);
+}
+
+TEST(ManifoldRepair, TwoTissuesOnOneEdgeNoLongerHinge)
+{
+  const Repaired r = Repair(4, [](int x, int y, int z) {
+    return x == 1 && y == 1 && z == 1 ? 1 : x == 2 && y == 2 && z == 1 ? 2 : 0;
+  });
+  EXPECT_EQ(cbc3d::MeasureMeshTopology(TissueOnly(r.Before, r.Before.Labels)).Whole.HingedParts, 1);
+  ExpectSound(r);
+}
+
+TEST(ManifoldRepair, ACheckerboardBecomesManifold)
+{
+  const Repaired r = Repair(6, [](int x, int y, int z) { return Inside(x, y, z, 1, 5) && (x + y + z) % 2 == 0 ? 1 : 0; });
+  EXPECT_GT(r.NonManifoldBefore, 0);
+  ExpectSound(r);
+}
+
+TEST(ManifoldRepair, ATwoTissueCheckerboardBecomesManifold)
+{
+  const Repaired r = Repair(6, [](int x, int y, int z) { return Inside(x, y, z, 1, 5) ? 1 + (x + y + z) % 2 : 0; });
+  EXPECT_GT(r.NonManifoldBefore, 0);
+  ExpectSound(r);
+}
+
+TEST(ManifoldRepair, AMeshThatPinchesItselfKeepsOneSideOfThePinch)
+{
+  // Only two cubes exist, sharing one edge: no tet can join them, so one side must go.
+  auto two = [](int x, int y, int z) { return (x == 0 && y == 0 && z == 0) || (x == 1 && y == 1 && z == 0); };
+  const Repaired r = Repair(2, [&](int x, int y, int z) { return two(x, y, z) ? 1 : 0; }, two);
+  ExpectSound(r);
+  const cbc3d::MeshTopology after = cbc3d::MeasureMeshTopology(TissueOnly(r.Before, r.Classes));
+  EXPECT_GE(after.Whole.FaceComponents, 1);
+}
