@@ -79,6 +79,98 @@ def picture(image_path, edge, out_name, background=None, view_up=(0, 0, 1), dire
         Delete(proxy)
 
 
+def hinged_tets(mesh):
+    """1 for the tets outside the largest face-connected piece of their tissue: with majority
+    labels these hang on the rest by an edge or a vertex (counted by the independent checker)."""
+    import numpy as np
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    sys.path.insert(0, os.path.join(root, "Testing", "Python"))
+    import mesh_topology as mt
+
+    tets = vtk_to_numpy(mesh.GetCells().GetConnectivityArray()).reshape(-1, 4).astype(np.int64)
+    labels = vtk_to_numpy(mesh.GetCellData().GetArray("Label"))
+    topology = mt.MeshTopology(vtk_to_numpy(mesh.GetPoints().GetData()), tets)
+    same = labels[topology.pair_a] == labels[topology.pair_b]
+    roots = mt.components(len(tets), topology.pair_a[same], topology.pair_b[same])
+    flag = np.ones(len(tets), dtype=np.uint8)
+    for label in np.unique(labels):
+        mine = labels == label
+        largest = np.bincount(roots[mine]).argmax()
+        flag[mine & (roots == largest)] = 0
+    return flag
+
+
+def sound_labels_picture(image_path, edge, out_name, direction):
+    """Majority labels (left) and sound labels (right): the brain's surface, with the tets that
+    hang on the rest by an edge or a vertex in red."""
+    from paraview import servermanager
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
+
+    image = OpenDataFile(image_path)
+    view = GetActiveViewOrCreate("RenderView")
+    view.ViewSize = [1400, 700]
+    view.OrientationAxesVisibility = 0
+    view.Background = [1, 1, 1]
+    try:
+        view.UseColorPaletteForBackground = 0
+    except AttributeError:
+        pass
+    shown = []
+    for side, sound in enumerate((0, 1)):
+        lattice = CBC3DBCCLattice(Input=image)
+        lattice.EdgeLength = edge
+        refined = CBC3DRefinement(Input=lattice, Image=image)
+        refined.SoundLabels = sound
+        refined.UpdatePipeline()
+        mesh = vtkUnstructuredGrid()
+        mesh.ShallowCopy(servermanager.Fetch(refined))
+        flag = numpy_to_vtk(hinged_tets(mesh), deep=1)
+        flag.SetName("Hinged")
+        mesh.GetCellData().AddArray(flag)
+        producer = TrivialProducer()
+        producer.GetClientSideObject().SetOutput(mesh)
+        bounds = refined.GetDataInformation().GetBounds()
+        shift = (bounds[1] - bounds[0]) * 1.15 * side
+        body = Show(producer, view)
+        body.Position = [shift, 0, 0]
+        body.DiffuseColor = [0.85, 0.85, 0.8]
+        body.AmbientColor = [0.85, 0.85, 0.8]
+        ColorBy(body, None)
+        body.Opacity = 0.35
+        hinged = Threshold(Input=producer, Scalars=["CELLS", "Hinged"])
+        try:
+            hinged.LowerThreshold, hinged.UpperThreshold = 0.5, 1.5
+        except AttributeError:
+            hinged.ThresholdRange = [0.5, 1.5]
+        red = Show(hinged, view)
+        red.Position = [shift, 0, 0]
+        ColorBy(red, None)
+        red.DiffuseColor = [0.85, 0.1, 0.1]
+        red.AmbientColor = [0.85, 0.1, 0.1]
+        red.SetRepresentationType("Surface With Edges")
+        shown += [hinged, producer, refined, lattice]
+        print("%s labels: %d tets hang off their tissue's largest piece"
+              % ("sound" if sound else "majority", int(vtk_array_sum(mesh.GetCellData().GetArray("Hinged")))))
+    view.ResetCamera()
+    camera = view.GetActiveCamera()
+    focal = camera.GetFocalPoint()
+    distance = camera.GetDistance()
+    camera.SetPosition(*[focal[a] + distance * 0.9 * direction[a] for a in range(3)])
+    camera.SetViewUp(0, 0, 1)
+    view.ResetCamera()
+    Render(view)
+    out = os.path.join(here, "images", out_name)
+    SaveScreenshot(out, view, ImageResolution=[1400, 700])
+    print("wrote", out)
+    for proxy in shown + [image]:
+        Delete(proxy)
+
+
+def vtk_array_sum(array):
+    return sum(array.GetTuple1(i) for i in range(array.GetNumberOfTuples()))
+
+
 picture(os.path.join(root, "Data", "nested_shells.vti"), 2.0, "lattice-nested-shells.png")
 if os.path.isdir(shared):
     picture(os.path.join(shared, "cbc3d-brain.nii.gz"), 8.0, "lattice-brain.png", direction=(-1, -1, 0.6))
@@ -88,5 +180,6 @@ if os.path.isdir(shared):
             color_by="RefinementLevel")
     picture(os.path.join(shared, "cbc3d-brain.nii.gz"), 8.0, "final-brain.png", direction=(-1, -1, 0.6), final=True)
     picture(os.path.join(shared, "nipype-tissue-labels.nii.gz"), 8.0, "final-three-tissues.png", final=True)
+    sound_labels_picture(os.path.join(shared, "cbc3d-brain.nii.gz"), 8.0, "sound-labels-brain.png", direction=(0, -1, 0.5))
 else:
     print("no ../shared/data: real-image pictures skipped")

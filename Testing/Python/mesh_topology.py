@@ -290,8 +290,7 @@ def image_report(values, background=(0,), minimum_voxels=8):
         mask = np.isin(values, labels) if label == "all" else values == label
         sizes = voxel_components(mask)
         report[label] = dict(voxels=int(mask.sum()), components=int(len(sizes)),
-                             # A tissue whose components are all small keeps its largest.
-                             components_kept=int((sizes >= min(minimum_voxels, sizes.max(initial=0))).sum()),
+                             components_kept=int((sizes >= minimum_voxels).sum()),
                              euler=voxel_surface_euler(mask))
     return report
 

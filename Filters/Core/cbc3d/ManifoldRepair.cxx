@@ -21,9 +21,11 @@ constexpr std::int64_t Unreachable = std::numeric_limits<std::int64_t>::max();
 constexpr std::int64_t OutsideVotes = std::int64_t(1) << 52;
 // Each step of a joining path costs a little, so that of equal paths the shorter wins.
 constexpr std::int64_t StepCost = 1;
-// Repairs in one visit, and visits, before a vertex's whole star takes one class.
-constexpr int RoundsPerVisit = 6;
+// Repairs in one visit, and visits, before a vertex's whole star takes one class (by votes,
+// then, after more visits, by rank).
+constexpr int RoundsPerVisit = 10;
 constexpr int VisitsBeforeFallback = 3;
+constexpr int VisitsBeforeRankedFallback = 6;
 // How far (in tets) to look for a join of two parts elsewhere before joining them here.
 constexpr std::size_t JoinSearchTets = 2000;
 
@@ -163,7 +165,7 @@ private:
   bool JoinedNearby(const Star& star, const std::vector<int>& part, int keeper, int spare, std::int32_t cls);
   void RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed);
   void RepairRing(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed);
-  void Unify(Star& star, std::vector<std::int64_t>& changed);
+  void Unify(Star& star, bool byRank, std::vector<std::int64_t>& changed);
 
   const std::vector<Eigen::Vector3d>& PointList;
   const std::vector<Tet>& TetList;
@@ -594,18 +596,27 @@ void Repairer::RepairRing(Star& star, std::int32_t cls, std::vector<std::int64_t
       this->Relabel(star, node, cls, changed);
 }
 
-// The last resort: the whole star takes the highest ranked class in it (the tissue with the
-// most tets). Tets only ever move up the ranks this way, so neighbouring vertices cannot undo
-// each other's last resorts for ever.
-void Repairer::Unify(Star& star, std::vector<std::int64_t>& changed)
+// The last resort: the whole star takes one class: the one with the most votes in it, or, once
+// the vertex has had its share of those, the highest ranked (the tissue with the most tets).
+// Tets only ever move up the ranks that way, so neighbouring vertices cannot undo each other's
+// last resorts for ever. A pinned tet's class wins outright.
+void Repairer::Unify(Star& star, bool byRank, std::vector<std::int64_t>& changed)
 {
+  std::map<std::int32_t, std::int64_t> votes; // the star's votes for each class present
+  for (const std::int32_t cls : star.Class)
+    votes[cls] = 0;
+  for (auto& [cls, sum] : votes)
+    for (int node = 0; node < static_cast<int>(star.Tets.size()); ++node)
+      sum += this->VotesOf(star, node, cls);
   std::int32_t best = this->Background;
   bool pinned = false;
   for (int node = 0; node < star.Nodes() && !pinned; ++node)
   {
-    pinned = star.IsTet(node) && this->VotesOf(star, node, star.Class[node]) >= PinnedVotes;
-    if (pinned || this->Rank(star.Class[node]) > this->Rank(best))
-      best = star.Class[node]; // a pinned tet's class wins outright
+    const std::int32_t cls = star.Class[node];
+    pinned = star.IsTet(node) && this->VotesOf(star, node, cls) >= PinnedVotes;
+    const bool better = byRank ? this->Rank(cls) > this->Rank(best) : votes[cls] > votes[best];
+    if (pinned || better)
+      best = cls;
   }
   for (int node = 0; node < star.Nodes(); ++node)
     if (star.IsTet(node) && star.Class[node] != best)
@@ -643,7 +654,7 @@ void Repairer::RepairStar(PointId v, int visit, std::vector<std::int64_t>& chang
     }
   }
   ++result.Fallbacks;
-  this->Unify(star, changed);
+  this->Unify(star, visit >= VisitsBeforeRankedFallback, changed);
 }
 } // namespace
 

@@ -21,22 +21,21 @@ ImageRegions KeptRegions(const LabelImage& image, const TissueComponents& tissue
   ImageRegions regions;
   const std::int32_t tissueCount = static_cast<std::int32_t>(tissues.Label.size());
   for (std::int32_t c = 0; c < tissueCount; ++c)
+  {
     regions.ClassOfRegion.push_back(tissues.Label[c]);
+    regions.Speck.push_back(tissues.Size[c] < minimumVoxels);
+  }
   for (std::size_t c = 0; c < gaps.Size.size(); ++c)
+  {
     regions.ClassOfRegion.push_back(background);
-  // A tissue all of whose components are small keeps its largest, rather than vanishing.
-  std::map<std::int32_t, std::int64_t> keptSize;
-  for (std::int32_t c = 0; c < tissueCount; ++c)
-    keptSize[tissues.Label[c]] = std::max(keptSize[tissues.Label[c]], tissues.Size[c]);
-  std::vector<char> kept(tissueCount);
-  for (std::int32_t c = 0; c < tissueCount; ++c)
-    kept[c] = tissues.Size[c] >= std::min<std::int64_t>(keptSize[tissues.Label[c]], minimumVoxels);
+    regions.Speck.push_back(0);
+  }
   regions.RegionOfVoxel.assign(image.Labels.size(), -1);
   for (std::size_t v = 0; v < image.Labels.size(); ++v)
   {
     const std::int32_t tissue = tissues.ComponentOfVoxel[v];
     const std::int32_t gap = withCavities ? gaps.ComponentOfVoxel[v] : -1;
-    if (tissue >= 0 && kept[tissue])
+    if (tissue >= 0)
       regions.RegionOfVoxel[v] = tissue;
     else if (gap >= 0 && !gaps.TouchesBorder[gap] && gaps.Size[gap] >= minimumVoxels)
       regions.RegionOfVoxel[v] = tissueCount + gap;

@@ -26,8 +26,8 @@ struct SoundLabelsResult
 /// the body as a whole are manifold at every vertex (no hinge, no non-manifold edge or vertex
 /// on any boundary or interface: see ManifoldRepair.h), and every face-connected piece of a
 /// tissue or of the background stands for a 6-connected component of the image of at least
-/// `minimumVoxels` voxels, or of the tissue's largest where all its components are smaller
-/// (other pieces: islands, cavities, the cut-off ends of a pinch, are
+/// `minimumVoxels` voxels, or a smaller one (a speck) where the piece lies against another
+/// tissue rather than afloat in the background (other pieces: islands, cavities, the cut-off ends of a pinch, are
 /// given to their neighbours: see StrayComponents.h). Relabelling is by voxel votes (`counts`);
 /// tets in `pinned` (tet -> label: the tets that stand for a component refinement could not
 /// reach) keep their label unless nothing else works. Returns what it did.

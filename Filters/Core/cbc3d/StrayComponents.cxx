@@ -53,9 +53,22 @@ DisjointSets FindPieces(const std::vector<Tet>& tets, const std::vector<std::arr
   return pieces;
 }
 
-// Marks the piece holding most voxels of each image region (ties: the smaller root).
+// The pieces lying against a tissue of another class.
+std::vector<char> EmbeddedPieces(DisjointSets& pieces, const std::vector<std::array<std::int64_t, 4>>& across,
+  std::int32_t background, const std::vector<std::int32_t>& classes)
+{
+  std::vector<char> embedded(classes.size() + 1, 0);
+  for (std::size_t t = 0; t < classes.size(); ++t)
+    for (const std::int64_t n : across[t])
+      if (n >= 0 && classes[n] != classes[t] && classes[n] != background)
+        embedded[pieces.Find(static_cast<std::int64_t>(t))] = 1;
+  return embedded;
+}
+
+// Marks the piece holding most voxels of each image region (ties: the smaller root); a speck's
+// piece only where it is embedded.
 std::vector<char> KeptPieces(DisjointSets& pieces, const std::vector<std::int32_t>& voxelOwner,
-  const ImageRegions& regions, const std::vector<std::int32_t>& classes)
+  const ImageRegions& regions, const std::vector<std::int32_t>& classes, const std::vector<char>& embedded)
 {
   const std::int64_t outside = static_cast<std::int64_t>(classes.size());
   std::vector<std::unordered_map<std::int64_t, std::int64_t>> held(regions.ClassOfRegion.size());
@@ -67,16 +80,16 @@ std::vector<char> KeptPieces(DisjointSets& pieces, const std::vector<std::int32_
   }
   std::vector<char> kept(classes.size() + 1, 0);
   kept[pieces.Find(outside)] = 1;
-  for (const auto& counts : held)
+  for (std::size_t region = 0; region < held.size(); ++region)
   {
     std::int64_t best = -1, most = 0;
-    for (const auto& [piece, count] : counts)
+    for (const auto& [piece, count] : held[region])
       if (count > most || (count == most && piece < best))
       {
         best = piece;
         most = count;
       }
-    if (best >= 0)
+    if (best >= 0 && (!regions.Speck[region] || embedded[best]))
       kept[best] = 1;
   }
   return kept;
@@ -89,7 +102,8 @@ std::int64_t RemoveStrayComponents(const std::vector<Tet>& tets,
   std::vector<std::int32_t>& classes, std::vector<std::int64_t>& changed)
 {
   DisjointSets pieces = FindPieces(tets, across, background, classes);
-  const std::vector<char> kept = KeptPieces(pieces, voxelOwner, regions, classes);
+  const std::vector<char> kept =
+    KeptPieces(pieces, voxelOwner, regions, classes, EmbeddedPieces(pieces, across, background, classes));
   const std::int64_t count = static_cast<std::int64_t>(tets.size());
   std::vector<char> stray(count, 0);
   std::vector<char> strayRoot(count + 1, 0);

@@ -15,12 +15,16 @@ struct ImageRegions
 {
   std::vector<std::int32_t> RegionOfVoxel;
   std::vector<std::int32_t> ClassOfRegion;
+  /// Per region: a speck (fewer voxels than a component must have to be kept for sure), which
+  /// keeps its piece only where that piece lies against another tissue, not afloat.
+  std::vector<char> Speck;
 };
 
 /// Gives away the face-connected pieces of a class (tissue or background) that stand for no
 /// component of the image: a piece stands for an image component when it holds the most of its
-/// voxels (`voxelOwner`: the tet owning each voxel centre, or -1); the background's piece that
-/// reaches the mesh boundary is the outside and always stays. A piece given away goes tet by
+/// voxels (`voxelOwner`: the tet owning each voxel centre, or -1), and, for a speck, when it
+/// also touches another tissue (a speck afloat in the background would be a loose body); the
+/// background's piece that reaches the mesh boundary is the outside and always stays. A piece given away goes tet by
 /// tet, from its rim inwards, to the neighbouring class each tet holds most votes of. Appends
 /// the tets relabelled to `changed`; returns how many pieces went.
 std::int64_t RemoveStrayComponents(const std::vector<Tet>& tets,
