@@ -39,7 +39,7 @@ struct Star
   std::vector<std::vector<int>> Links; // per node, its linked nodes
   std::vector<std::int32_t> Class;     // per node
 
-  int Nodes() const { return static_cast<int>(this->Class.size()); }
+  int Nodes() const { return static_cast<int>(this->Class.size()); } // Links may hold more
   bool IsTet(int node) const { return node < static_cast<int>(this->Tets.size()); }
 };
 
@@ -175,6 +175,7 @@ private:
   const ClassVotes& Votes;
   std::vector<std::int32_t>& Classes;
   std::vector<int> LocalOf; // scratch: tet -> its node in the star being loaded
+  Star Scratch;             // the star being repaired
   std::map<std::int32_t, std::int64_t> TetsOfClass; // at the start: the last resort's ranks
 
   std::int64_t Rank(std::int32_t cls) const
@@ -213,7 +214,11 @@ void Repairer::Load(PointId v, Star& star)
   const std::int64_t first = this->Stars.Start[v], last = this->Stars.Start[v + 1];
   star.Tets.assign(this->Stars.Tets.begin() + first, this->Stars.Tets.begin() + last);
   const int n = static_cast<int>(star.Tets.size());
-  star.Links.assign(n, {});
+  // The star is scratch reused from vertex to vertex: its lists keep their memory.
+  if (star.Links.size() < std::size_t(n))
+    star.Links.resize(n);
+  for (int i = 0; i < n; ++i)
+    star.Links[i].clear();
   star.Class.resize(n);
   for (int i = 0; i < n; ++i)
   {
@@ -241,7 +246,9 @@ void Repairer::Load(PointId v, Star& star)
         if (k != j && tet[k] != v)
           face.Far[f++] = tet[k];
       star.Class.push_back(this->Background);
-      star.Links.push_back({ i });
+      if (star.Links.size() < star.Class.size())
+        star.Links.emplace_back();
+      star.Links[face.Node].assign(1, i);
       star.Links[i].push_back(face.Node);
       outside.push_back(face);
     }
@@ -634,7 +641,7 @@ void Repairer::Unify(Star& star, bool byRank, std::vector<std::int64_t>& changed
 void Repairer::RepairStar(PointId v, int visit, std::vector<std::int64_t>& changed,
   ManifoldRepairResult& result)
 {
-  Star star;
+  Star& star = this->Scratch;
   this->Load(v, star);
   Violation violation;
   if (!this->FindViolation(star, violation))

@@ -24,6 +24,9 @@ namespace
 // A tet that holds no sample at all (outside the image) has no label.
 constexpr std::int32_t NoLabel = std::numeric_limits<std::int32_t>::min();
 
+// Rounds of making the labels sound, each after giving lost components their tets back.
+constexpr int SoundLabelRounds = 3;
+
 // Bytes per tet at peak: the hierarchy, the final tets, their samples and the VTK output.
 constexpr double BytesPerTet = 400.0;
 
@@ -361,18 +364,25 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
     fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
   }
 
-  const std::map<std::int64_t, std::int32_t> pinned =
+  std::map<std::int64_t, std::int32_t> pinned =
     PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
-  // No hinge, no non-manifold surface, no piece the image does not have.
-  if (params.SoundLabels)
+  fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+  // No hinge, no non-manifold surface, no piece the image does not have. A component the
+  // repair lost gets its tet back, pinned, and the repair runs again around it.
+  for (int round = 0; params.SoundLabels && round < SoundLabelRounds; ++round)
   {
     const SoundLabelsResult sound = MakeLabelsSound(image, components, params.MinimumComponentVoxels,
       hierarchy.Points(), mesh.Tets, mesh.Counts, mesh.VoxelOwner, pinned, NoLabel, mesh.Labels);
-    result.Relabelled = sound.Relabelled;
+    result.Relabelled += sound.Relabelled;
     result.UnrepairedVertices = sound.Unrepaired;
-  }
-  if (!pinned.empty() || result.Relabelled > 0)
-  {
+    fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+    const auto lost = PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+    const std::size_t before = pinned.size();
+    pinned.insert(lost.begin(), lost.end());
+    if (pinned.size() == before)
+    {
+      break;
+    }
     fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
   }
 
