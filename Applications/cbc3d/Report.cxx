@@ -185,6 +185,7 @@ bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
     read(names::RefinementPasses, 0, report.RefinementPasses);
     read(names::RefinementBoundaryDistance, 0, report.RefinementBoundaryDistance);
     read(names::RefinementBoundaryGap, 0, report.RefinementBoundaryGap);
+    read(names::RefinementRelabelledTets, 0, report.RefinementRelabelledTets);
     report.RefinementStopReason = FieldText(mesh, names::RefinementStopReason);
     for (vtkIdType i = 0; i < fidelityLabels->GetNumberOfTuples(); ++i)
     {
@@ -291,7 +292,8 @@ std::string FormatJson(const RunReport& report)
     doc["refinement"] = { { "passes", report.RefinementPasses },
       { "stop_reason", report.RefinementStopReason },
       { "boundary_distance_mm", report.RefinementBoundaryDistance },
-      { "predicted_boundary_gap_mm", report.RefinementBoundaryGap } };
+      { "predicted_boundary_gap_mm", report.RefinementBoundaryGap },
+      { "relabelled_tets", static_cast<long long>(report.RefinementRelabelledTets) } };
   }
   if (report.DeformationIterations >= 0)
   {

@@ -60,6 +60,7 @@ struct RunReport
   int RefinementPasses = -1;                           // -1: no refinement
   std::string RefinementStopReason;
   double RefinementBoundaryDistance = 0.0; // the bound used (mm); 0 when none
+  double RefinementRelabelledTets = 0.0;  // tets relabelled for sound labels
   double RefinementBoundaryGap = 0.0;      // farthest boundary voxel from the predicted surface
   int DeformationIterations = -1;          // -1: no deformation
   std::string DeformationStopReason;
