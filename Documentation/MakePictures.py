@@ -136,7 +136,7 @@ def sound_labels_picture(image_path, edge, out_name, direction):
         body.Position = [shift, 0, 0]
         body.DiffuseColor = [0.85, 0.85, 0.8]
         body.AmbientColor = [0.85, 0.85, 0.8]
-        ColorBy(body, None)
+        body.ColorArrayName = ["POINTS", ""]
         body.Opacity = 0.35
         hinged = Threshold(Input=producer, Scalars=["CELLS", "Hinged"])
         try:
@@ -145,10 +145,11 @@ def sound_labels_picture(image_path, edge, out_name, direction):
             hinged.ThresholdRange = [0.5, 1.5]
         red = Show(hinged, view)
         red.Position = [shift, 0, 0]
-        ColorBy(red, None)
+        red.ColorArrayName = ["POINTS", ""]
         red.DiffuseColor = [0.85, 0.1, 0.1]
         red.AmbientColor = [0.85, 0.1, 0.1]
-        red.SetRepresentationType("Surface With Edges")
+        red.SetRepresentationType("Surface")
+        red.Ambient = 0.5  # bright red, whatever the light
         shown += [hinged, producer, refined, lattice]
         print("%s labels: %d tets hang off their tissue's largest piece"
               % ("sound" if sound else "majority", int(vtk_array_sum(mesh.GetCellData().GetArray("Hinged")))))
@@ -159,6 +160,7 @@ def sound_labels_picture(image_path, edge, out_name, direction):
     camera.SetPosition(*[focal[a] + distance * 0.9 * direction[a] for a in range(3)])
     camera.SetViewUp(0, 0, 1)
     view.ResetCamera()
+    camera.Dolly(1.9)  # the two brains fill the picture
     Render(view)
     out = os.path.join(here, "images", out_name)
     SaveScreenshot(out, view, ImageResolution=[1400, 700])
