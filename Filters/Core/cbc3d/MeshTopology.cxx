@@ -1,5 +1,6 @@
 #include "cbc3d/MeshTopology.h"
 
+#include "cbc3d/DisjointSets.h"
 #include "cbc3d/MeshFaces.h"
 
 #include <algorithm>
@@ -13,39 +14,6 @@ namespace
 {
 // Region 0 is the whole body, region 1 + i the i-th tissue label in ascending order.
 constexpr int WholeRegion = 0;
-
-// Disjoint sets over 0..n-1 with path halving; the smaller index becomes the root.
-class DisjointSets
-{
-public:
-  explicit DisjointSets(std::size_t count)
-    : Parent(count)
-  {
-    std::iota(this->Parent.begin(), this->Parent.end(), std::int64_t(0));
-  }
-  std::int64_t Find(std::int64_t x)
-  {
-    while (this->Parent[x] != x)
-    {
-      this->Parent[x] = this->Parent[this->Parent[x]];
-      x = this->Parent[x];
-    }
-    return x;
-  }
-  void Join(std::int64_t a, std::int64_t b)
-  {
-    a = this->Find(a);
-    b = this->Find(b);
-    if (a != b)
-    {
-      this->Parent[std::max(a, b)] = std::min(a, b);
-    }
-  }
-  bool IsRoot(std::int64_t x) const { return this->Parent[x] == x; }
-
-private:
-  std::vector<std::int64_t> Parent;
-};
 
 // Values grouped by a key in 0..keyCount-1 (a counting sort): key k's values are
 // Values[Start[k]] .. Values[Start[k + 1] - 1]. `forEach(emit)` calls emit(key, value) for

@@ -1,5 +1,7 @@
 #include "cbc3d/StrayComponents.h"
 
+#include "cbc3d/DisjointSets.h"
+
 #include <algorithm>
 #include <numeric>
 #include <unordered_map>
@@ -8,33 +10,6 @@ namespace cbc3d
 {
 namespace
 {
-struct DisjointSets
-{
-  std::vector<std::int64_t> Parent;
-
-  explicit DisjointSets(std::size_t n)
-    : Parent(n)
-  {
-    std::iota(this->Parent.begin(), this->Parent.end(), 0);
-  }
-  std::int64_t Find(std::int64_t x)
-  {
-    while (this->Parent[x] != x)
-    {
-      this->Parent[x] = this->Parent[this->Parent[x]];
-      x = this->Parent[x];
-    }
-    return x;
-  }
-  void Unite(std::int64_t a, std::int64_t b)
-  {
-    a = this->Find(a);
-    b = this->Find(b);
-    if (a != b)
-      this->Parent[std::max(a, b)] = std::min(a, b); // the smaller root: order-independent
-  }
-};
-
 // The pieces of every class; node tets.size() is the outside, joined to the boundary's
 // background tets.
 DisjointSets FindPieces(const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
@@ -46,9 +21,9 @@ DisjointSets FindPieces(const std::vector<Tet>& tets, const std::vector<std::arr
     for (const std::int64_t n : across[t])
     {
       if (n >= 0 && classes[n] == classes[t])
-        pieces.Unite(t, n);
+        pieces.Join(t, n);
       else if (n < 0 && classes[t] == background)
-        pieces.Unite(t, outside);
+        pieces.Join(t, outside);
     }
   return pieces;
 }
