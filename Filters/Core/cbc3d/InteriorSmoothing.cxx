@@ -8,18 +8,8 @@ namespace cbc3d
 {
 InteriorSmoothing::InteriorSmoothing(const std::vector<Tet>& tets, std::size_t pointCount)
   : Tets(tets)
-  , Start(pointCount + 1, 0)
+  , Around(tets, pointCount)
 {
-  for (const Tet& tet : tets)
-    for (const PointId p : tet)
-      ++this->Start[p + 1];
-  for (std::size_t p = 0; p < pointCount; ++p)
-    this->Start[p + 1] += this->Start[p];
-  this->Around.resize(this->Start[pointCount]);
-  std::vector<std::size_t> next(this->Start.begin(), this->Start.end() - 1);
-  for (std::size_t t = 0; t < tets.size(); ++t)
-    for (const PointId p : tets[t])
-      this->Around[next[p]++] = t;
 }
 
 std::size_t InteriorSmoothing::Smooth(
@@ -28,9 +18,9 @@ std::size_t InteriorSmoothing::Smooth(
   // The worst tet around p, as the largest dihedral |cos| (2 when one is inverted).
   auto worst = [&](std::size_t p) {
     double w = 0.0;
-    for (std::size_t i = this->Start[p]; i < this->Start[p + 1]; ++i)
+    for (std::int64_t i = this->Around.Start[p]; i < this->Around.Start[p + 1]; ++i)
     {
-      const Tet& t = this->Tets[this->Around[i]];
+      const Tet& t = this->Tets[this->Around.Tets[i]];
       w = std::max(w, SignedVolume(x[t[0]], x[t[1]], x[t[2]], x[t[3]]) > 0.0
           ? LargestDihedralCosine(x[t[0]], x[t[1]], x[t[2]], x[t[3]])
           : 2.0);
@@ -41,17 +31,17 @@ std::size_t InteriorSmoothing::Smooth(
   for (int sweep = 0; sweep < sweeps; ++sweep)
   {
     std::size_t moved = 0;
-    for (std::size_t p = 0; p + 1 < this->Start.size(); ++p)
+    for (std::size_t p = 0; p + 1 < this->Around.Start.size(); ++p)
     {
-      if (!movable[p] || this->Start[p] == this->Start[p + 1])
+      if (!movable[p] || this->Around.Start[p] == this->Around.Start[p + 1])
       {
         continue;
       }
       Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-      for (std::size_t i = this->Start[p]; i < this->Start[p + 1]; ++i)
-        for (const PointId q : this->Tets[this->Around[i]])
+      for (std::int64_t i = this->Around.Start[p]; i < this->Around.Start[p + 1]; ++i)
+        for (const PointId q : this->Tets[this->Around.Tets[i]])
           centre += x[q];
-      centre /= 4.0 * double(this->Start[p + 1] - this->Start[p]);
+      centre /= 4.0 * double(this->Around.Start[p + 1] - this->Around.Start[p]);
       const double before = worst(p);
       const Eigen::Vector3d kept = x[p];
       x[p] = centre;

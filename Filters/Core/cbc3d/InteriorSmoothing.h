@@ -1,6 +1,7 @@
 #ifndef cbc3d_InteriorSmoothing_h
 #define cbc3d_InteriorSmoothing_h
 
+#include "cbc3d/PointTets.h"
 #include "cbc3d/TetMesh.h"
 
 #include <Eigen/Core>
@@ -26,8 +27,7 @@ public:
 
 private:
   const std::vector<Tet>& Tets;
-  std::vector<std::size_t> Start;  // the tets around point p: Around[Start[p] .. Start[p + 1])
-  std::vector<std::size_t> Around;
+  PointTets Around; // the tets around each point
 };
 } // namespace cbc3d
 

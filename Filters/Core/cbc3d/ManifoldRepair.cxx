@@ -1,6 +1,8 @@
 #include "cbc3d/ManifoldRepair.h"
 
+#include "cbc3d/DisjointSets.h"
 #include "cbc3d/MeshFaces.h"
+#include "cbc3d/PointTets.h"
 
 #include <Eigen/Geometry>
 
@@ -9,7 +11,6 @@
 #include <deque>
 #include <limits>
 #include <map>
-#include <numeric>
 #include <queue>
 
 namespace cbc3d
@@ -48,27 +49,6 @@ struct OutsideFace
 {
   int Node, Tet;
   PointId Far[2];
-};
-
-// Vertex -> tets, in compressed rows.
-struct VertexTets
-{
-  std::vector<std::int64_t> Start, Tets;
-
-  VertexTets(const std::vector<Tet>& tets, std::size_t pointCount)
-    : Start(pointCount + 1, 0)
-  {
-    for (const Tet& tet : tets)
-      for (const PointId p : tet)
-        ++this->Start[p + 1];
-    for (std::size_t p = 0; p < pointCount; ++p)
-      this->Start[p + 1] += this->Start[p];
-    this->Tets.resize(this->Start[pointCount]);
-    std::vector<std::int64_t> fill(this->Start.begin(), this->Start.end() - 1);
-    for (std::size_t t = 0; t < tets.size(); ++t)
-      for (const PointId p : tets[t])
-        this->Tets[fill[p]++] = static_cast<std::int64_t>(t);
-  }
 };
 
 // Components of the nodes for which `member` holds; returns their count, fills `component`
@@ -170,7 +150,7 @@ private:
   const std::vector<Eigen::Vector3d>& PointList;
   const std::vector<Tet>& TetList;
   const std::vector<std::array<std::int64_t, 4>>& Across;
-  VertexTets Stars;
+  PointTets Stars;
   std::int32_t Background;
   const ClassVotes& Votes;
   std::vector<std::int32_t>& Classes;
@@ -276,33 +256,26 @@ int Repairer::CoveredPieces(PointId v, const Star& star) const
         far.push_back(p);
   std::sort(far.begin(), far.end());
   far.erase(std::unique(far.begin(), far.end()), far.end());
-  std::vector<int> parent(far.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int x) {
-    while (parent[x] != x)
-      x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  auto index = [&](PointId p) { return int(std::lower_bound(far.begin(), far.end(), p) - far.begin()); };
-  int pieces = static_cast<int>(far.size());
+  DisjointSets pieces(far.size());
+  auto index = [&](PointId p) { return std::lower_bound(far.begin(), far.end(), p) - far.begin(); };
+  int count = static_cast<int>(far.size());
   for (const std::int64_t t : star.Tets)
   {
-    int first = -1;
+    std::int64_t first = -1;
     for (const PointId p : this->TetList[t])
     {
       if (p == v)
         continue;
-      const int root = find(index(p));
       if (first < 0)
-        first = root;
-      else if (root != find(first))
+        first = index(p);
+      else if (pieces.Find(first) != pieces.Find(index(p)))
       {
-        parent[root] = find(first);
-        --pieces;
+        pieces.Join(first, index(p));
+        --count;
       }
     }
   }
-  return pieces;
+  return count;
 }
 
 // Links the outside faces that bound one gap: around each edge (v, w) the tets form chains
@@ -660,7 +633,6 @@ void Repairer::RepairStar(PointId v, int visit, std::vector<std::int64_t>& chang
       return;
     }
   }
-  ++result.Fallbacks;
   this->Unify(star, visit >= VisitsBeforeRankedFallback, changed);
 }
 } // namespace

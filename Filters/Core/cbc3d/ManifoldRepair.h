@@ -24,7 +24,6 @@ struct ManifoldRepairResult
 {
   std::int64_t Relabelled = 0; // tet relabellings (a tet may count more than once)
   std::int64_t Repairs = 0;    // vertex stars repaired
-  std::int64_t Fallbacks = 0;  // of them, stars that took one class (the last resort)
   std::int64_t Unrepaired = 0; // vertices still not manifold (0 unless the work bound was hit)
 };
 

@@ -1,6 +1,7 @@
 #include "cbc3d/Refinement.h"
 
 #include "cbc3d/BoundaryCoverage.h"
+#include "cbc3d/ManifoldRepair.h"
 #include "cbc3d/Parallel.h"
 #include "cbc3d/RedGreenMesh.h"
 #include "cbc3d/SoundLabels.h"
@@ -366,23 +367,26 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
 
   std::map<std::int64_t, std::int32_t> pinned =
     PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
-  fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
   // No hinge, no non-manifold surface, no piece the image does not have. A component the
   // repair lost gets its tet back, pinned, and the repair runs again around it.
-  for (int round = 0; params.SoundLabels && round < SoundLabelRounds; ++round)
+  bool measured = false; // the fidelity is that of the labels as they are
+  if (params.SoundLabels)
   {
-    const SoundLabelsResult sound = MakeLabelsSound(image, components, params.MinimumComponentVoxels,
-      hierarchy.Points(), mesh.Tets, mesh.Counts, mesh.VoxelOwner, pinned, NoLabel, mesh.Labels);
-    result.Relabelled += sound.Relabelled;
-    result.UnrepairedVertices = sound.Unrepaired;
-    fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
-    const auto lost = PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
-    const std::size_t before = pinned.size();
-    pinned.insert(lost.begin(), lost.end());
-    if (pinned.size() == before)
+    const auto across = FaceNeighbours(mesh.Tets, hierarchy.Points().size());
+    for (int round = 0; round < SoundLabelRounds && !measured; ++round)
     {
-      break;
+      result.Relabelled += MakeLabelsSound(image, components, params.MinimumComponentVoxels,
+        hierarchy.Points(), mesh.Tets, across, mesh.Counts, mesh.VoxelOwner, pinned, NoLabel,
+        mesh.Labels).Relabelled;
+      fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+      const std::size_t before = pinned.size();
+      const auto lost = PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+      pinned.insert(lost.begin(), lost.end());
+      measured = pinned.size() == before;
     }
+  }
+  if (!measured)
+  {
     fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
   }
 

@@ -59,7 +59,6 @@ struct RefinementResult
   int Passes = 0;                      // refinement passes that split tets
   int DeepestLevel = 0;                // red level of the finest tets
   std::int64_t Relabelled = 0;         // tets relabelled for a sound mesh (see SoundLabels.h)
-  std::int64_t UnrepairedVertices = 0; // vertices left non-manifold (0 unless a bound was hit)
   std::vector<std::uint8_t> Levels;    // red level of every output tet
   std::string StopReason;              // why refinement ended, in words
 };

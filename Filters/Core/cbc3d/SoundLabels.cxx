@@ -54,6 +54,7 @@ std::vector<PointId> VerticesOf(const std::vector<Tet>& tets, const std::vector<
 
 SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponents& components,
   int minimumVoxels, const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
+  const std::vector<std::array<std::int64_t, 4>>& across,
   const std::vector<LabelCounts>& counts, const std::vector<std::int32_t>& voxelOwner,
   const std::map<std::int64_t, std::int32_t>& pinned, std::int32_t background,
   std::vector<std::int32_t>& labels)
@@ -67,11 +68,9 @@ SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponent
     const std::int64_t bonus = pin != pinned.end() && pin->second == cls ? PinnedVotes : 0;
     return bonus + (cls == background ? counts[t].Total() - counts[t].TissueTotal(image) : counts[t].Of(cls));
   };
-  const auto across = FaceNeighbours(tets, points.size());
   SoundLabelsResult result;
   ManifoldRepairResult repair = RepairManifoldLabels(points, tets, across, background, votes, classes);
   result.Repairs += repair.Repairs;
-  result.Fallbacks += repair.Fallbacks;
   const ImageRegions regions = KeptRegions(image, components, minimumVoxels, background,
     HasEnclosedBackground(tets, across, background, classes));
   for (int round = 0; round < CleanupRounds; ++round)
@@ -85,8 +84,7 @@ SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponent
     }
     repair = RepairManifoldLabels(points, tets, across, background, votes, classes, VerticesOf(tets, changed));
     result.Repairs += repair.Repairs;
-    result.Fallbacks += repair.Fallbacks;
-  }
+    }
   result.Unrepaired = repair.Unrepaired;
   for (std::size_t t = 0; t < labels.size(); ++t)
   {

@@ -6,6 +6,7 @@
 #include "cbc3d/TetVoxelSampler.h"
 #include "cbc3d/TissueComponents.h"
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <vector>
@@ -16,7 +17,6 @@ struct SoundLabelsResult
 {
   std::int64_t Relabelled = 0;  // tets whose label changed
   std::int64_t Repairs = 0;     // vertex stars mended
-  std::int64_t Fallbacks = 0;   // of them, stars given one class as the last resort
   std::int64_t StrayPieces = 0; // pieces that stood for no image component, given away
   std::int64_t Unrepaired = 0;  // vertices still not manifold (0 unless a work bound was hit)
 };
@@ -27,12 +27,14 @@ struct SoundLabelsResult
 /// on any boundary or interface: see ManifoldRepair.h), and every face-connected piece of a
 /// tissue or of the background stands for a 6-connected component of the image of at least
 /// `minimumVoxels` voxels, or a smaller one (a speck) where the piece lies against another
-/// tissue rather than afloat in the background (other pieces: islands, cavities, the cut-off ends of a pinch, are
-/// given to their neighbours: see StrayComponents.h). Relabelling is by voxel votes (`counts`);
-/// tets in `pinned` (tet -> label: the tets that stand for a component refinement could not
-/// reach) keep their label unless nothing else works. Returns what it did.
+/// tissue rather than afloat in the background (other pieces: islands, cavities, the cut-off
+/// ends of a pinch, are given to their neighbours: see StrayComponents.h). Relabelling is by
+/// voxel votes (`counts`); `across` is FaceNeighbours(tets); tets in `pinned` (tet -> label:
+/// the tets that stand for a component refinement could not reach) keep their label unless
+/// nothing else works. Returns what it did.
 SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponents& components,
   int minimumVoxels, const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
+  const std::vector<std::array<std::int64_t, 4>>& across,
   const std::vector<LabelCounts>& counts, const std::vector<std::int32_t>& voxelOwner,
   const std::map<std::int64_t, std::int32_t>& pinned, std::int32_t background,
   std::vector<std::int32_t>& labels);
