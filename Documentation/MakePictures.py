@@ -14,6 +14,19 @@ root = os.path.dirname(here)
 shared = os.path.join(root, "..", "shared", "data")
 
 
+def white_view(size):
+    """The render view, sized, on a white background without axes."""
+    view = GetActiveViewOrCreate("RenderView")
+    view.ViewSize = size
+    view.OrientationAxesVisibility = 0
+    view.Background = [1, 1, 1]
+    try:
+        view.UseColorPaletteForBackground = 0
+    except AttributeError:
+        pass
+    return view
+
+
 def picture(image_path, edge, out_name, background=None, view_up=(0, 0, 1), direction=(1, -1, 0.6),
             refine=False, color_by="Label", final=False):
     """The lattice (or the refined mesh) clipped by a plane through its centre, coloured by Label."""
@@ -39,14 +52,7 @@ def picture(image_path, edge, out_name, background=None, view_up=(0, 0, 1), dire
     clip.ClipType.Origin = centre
     clip.ClipType.Normal = [1, 0, 0]
     clip.Crinkleclip = 1  # whole tets, as in the paper's cross-sections
-    view = GetActiveViewOrCreate("RenderView")
-    view.ViewSize = [900, 700]
-    view.OrientationAxesVisibility = 0
-    view.Background = [1, 1, 1]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
+    view = white_view([900, 700])
     for name in ("Label", "RefinementLevel"):  # bars of earlier pictures
         HideScalarBarIfNotNeeded(GetColorTransferFunction(name), view)
     display = Show(clip, view)
@@ -108,14 +114,7 @@ def sound_labels_picture(image_path, edge, out_name, direction):
     from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
 
     image = OpenDataFile(image_path)
-    view = GetActiveViewOrCreate("RenderView")
-    view.ViewSize = [1400, 700]
-    view.OrientationAxesVisibility = 0
-    view.Background = [1, 1, 1]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
+    view = white_view([1400, 700])
     shown = []
     for side, sound in enumerate((0, 1)):
         lattice = CBC3DBCCLattice(Input=image)

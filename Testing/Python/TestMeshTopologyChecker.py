@@ -1,7 +1,6 @@
 # Plain python3: the independent topology checker (mesh_topology.py) gives the known answers on
 # hand-made meshes and images, and its mesh and image halves agree with each other (and with
 # scipy where it is installed) on random voxel sets meshed cube by cube.
-import itertools
 import os
 import sys
 import tempfile
@@ -9,7 +8,7 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cbc3d_testing import Checks, write_nifti  # noqa: E402
+from cbc3d_testing import Checks, kuhn_mesh, write_nifti  # noqa: E402
 import mesh_topology as mt  # noqa: E402
 
 check = Checks()
@@ -18,27 +17,6 @@ check = Checks()
 def expect(name, figures, **expected):
     got = {key: figures[key] for key in expected}
     check(got == expected, "%s: %s (expected %s)" % (name, got, expected))
-
-
-def kuhn_mesh(mask):
-    """Each voxel of mask split into the 6 tets of the Kuhn triangulation (paths from its lowest
-    to its highest corner), which conform across voxels: a mesh whose tets cover the voxels.
-    Labels: the mask's values."""
-    mask = np.asarray(mask)
-    shape = np.array(mask.shape) + 1
-    grid = np.stack(np.meshgrid(*[np.arange(s) for s in shape], indexing="ij"), axis=-1).reshape(-1, 3)
-    voxels = np.argwhere(mask != 0)
-    steps = np.eye(3, dtype=np.int64)
-    tets = []
-    for perm in itertools.permutations(range(3)):
-        c0 = voxels
-        c1 = c0 + steps[perm[0]]
-        c2 = c1 + steps[perm[1]]
-        c3 = c2 + steps[perm[2]]
-        tets.append(np.stack([(c[:, 0] * shape[1] + c[:, 1]) * shape[2] + c[:, 2] for c in (c0, c1, c2, c3)], axis=1))
-    tets = np.stack(tets, axis=1).reshape(-1, 4)
-    labels = np.repeat(mask[tuple(voxels.T)], 6)
-    return grid.astype(float), tets, labels
 
 
 # --- Hand-made tet meshes --------------------------------------------------------------------

@@ -11,7 +11,6 @@
 # a solid torus 0, a thick spherical shell 4, a ball 2, exactly, at lattices that resolve them.
 # Controls first: the same checks fail on hand-made bad meshes (hinged, non-manifold, inverted,
 # an extra piece, a handle) and pass on good ones, so that the test can fail.
-import itertools
 import os
 import shlex
 import subprocess
@@ -22,7 +21,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cbc3d_testing import Checks, write_nifti  # noqa: E402
+from cbc3d_testing import Checks, kuhn_mesh, write_nifti  # noqa: E402
 import mesh_topology as mt  # noqa: E402
 
 START = time.time()
@@ -89,27 +88,6 @@ def verify(points, tets, labels, image, balls=False, euler=None):
 
 
 # --- Controls: hand-made meshes ---------------------------------------------------------------
-
-def kuhn_mesh(mask):
-    """Each nonzero voxel of mask split into the 6 tets of the Kuhn triangulation, positively
-    oriented; labels: the voxel values. Points on the voxel-corner grid (voxel i spans [i, i+1])."""
-    mask = np.asarray(mask)
-    shape = np.array(mask.shape) + 1
-    grid = np.stack(np.meshgrid(*[np.arange(s) for s in shape], indexing="ij"), axis=-1).reshape(-1, 3)
-    voxels = np.argwhere(mask != 0)
-    steps = np.eye(3, dtype=np.int64)
-    tets = []
-    for perm in itertools.permutations(range(3)):
-        c = [voxels]
-        for axis in perm:
-            c.append(c[-1] + steps[axis])
-        tets.append(np.stack([(q[:, 0] * shape[1] + q[:, 1]) * shape[2] + q[:, 2] for q in c], axis=1))
-    tets = np.stack(tets, axis=1).reshape(-1, 4)
-    points = grid.astype(float)
-    flip = signed_volumes(points, tets) < 0
-    tets[flip] = tets[flip][:, [1, 0, 2, 3]]
-    return points, tets, np.repeat(mask[tuple(voxels.T)], 6)
-
 
 def control(name, mesh, image, expect_fail, **options):
     """The checks on a hand-made mesh: those named in expect_fail (substrings of the messages)

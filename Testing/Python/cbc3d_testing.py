@@ -96,3 +96,30 @@ def read_nifti_header(path):
         "qoffset": field("3f", 268),
         "srow": (field("4f", 280), field("4f", 296), field("4f", 312)),
     }
+
+
+def kuhn_mesh(mask):
+    """Each nonzero voxel of mask split into the 6 tets of the Kuhn triangulation (paths from its
+    lowest to its highest corner), which conform across voxels, positively oriented; points on
+    the voxel-corner grid (voxel i spans [i, i+1]); labels: the voxel values."""
+    import itertools
+
+    import numpy as np
+
+    mask = np.asarray(mask)
+    shape = np.array(mask.shape) + 1
+    grid = np.stack(np.meshgrid(*[np.arange(s) for s in shape], indexing="ij"), axis=-1).reshape(-1, 3)
+    voxels = np.argwhere(mask != 0)
+    steps = np.eye(3, dtype=np.int64)
+    tets = []
+    for perm in itertools.permutations(range(3)):
+        corners = [voxels]
+        for axis in perm:
+            corners.append(corners[-1] + steps[axis])
+        tets.append(np.stack([(q[:, 0] * shape[1] + q[:, 1]) * shape[2] + q[:, 2] for q in corners], axis=1))
+    tets = np.stack(tets, axis=1).reshape(-1, 4)
+    points = grid.astype(float)
+    p = points[tets]
+    flip = np.einsum("ij,ij->i", p[:, 1] - p[:, 0], np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 0])) < 0
+    tets[flip] = tets[flip][:, [1, 0, 2, 3]]
+    return points, tets, np.repeat(mask[tuple(voxels.T)], 6)
