@@ -3,7 +3,12 @@
 #include "CommandLine.h"
 #include "ErrorCapture.h"
 
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkLongArray.h>
 #include <vtkNew.h>
+#include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkUnstructuredGridWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
@@ -46,10 +51,38 @@ bool CanCreate(const std::string& path, std::string& error)
   }
   return true;
 }
+// The mesh as files carry it, so that meshio, the converter FE users reach for, reads them:
+// its field data without text arrays (the stop reasons; the JSON report keeps the words), and,
+// for the legacy format, whose "vtkIdType" meshio does not know, the id counts as "long".
+vtkSmartPointer<vtkUnstructuredGrid> ForMeshio(vtkUnstructuredGrid* mesh, bool legacy)
+{
+  auto copy = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  copy->ShallowCopy(mesh);
+  vtkNew<vtkFieldData> fields;
+  vtkFieldData* original = mesh->GetFieldData();
+  for (int i = 0; i < original->GetNumberOfArrays(); ++i)
+  {
+    vtkDataArray* array = vtkDataArray::SafeDownCast(original->GetAbstractArray(i));
+    if (legacy && vtkIdTypeArray::SafeDownCast(array))
+    {
+      vtkNew<vtkLongArray> counts;
+      counts->DeepCopy(array);
+      counts->SetName(array->GetName());
+      fields->AddArray(counts);
+    }
+    else if (array)
+    {
+      fields->AddArray(array);
+    }
+  }
+  copy->SetFieldData(fields);
+  return copy;
+}
 } // namespace
 
-bool WriteMeshFile(vtkUnstructuredGrid* mesh, const std::string& path, std::string& error)
+bool WriteMeshFile(vtkUnstructuredGrid* input, const std::string& path, std::string& error)
 {
+  const vtkSmartPointer<vtkUnstructuredGrid> mesh = ForMeshio(input, FileExtension(path) == ".vtk");
   return WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
     if (!CanCreate(temporary, message))
     {

@@ -5,7 +5,8 @@
 
 class vtkUnstructuredGrid;
 
-/// Writes .vtu (VTK XML, inline binary, zlib) or .vtk (legacy 4.2, binary). The file appears
+/// Writes .vtu (VTK XML, inline binary, zlib) or .vtk (legacy 4.2, binary), every array but
+/// the field data's text (the stop reasons, which meshio cannot read; the report has them). The file appears
 /// whole or not at all: it is written under a temporary name in the same folder, then renamed.
 bool WriteMeshFile(vtkUnstructuredGrid* mesh, const std::string& path, std::string& error);
 
