@@ -84,6 +84,7 @@ int vtkCBC3DDeformation::RequestData(
   params.Penalty = this->Penalty;
   params.MinimumDihedralAngle = this->MinimumDihedralAngle;
   params.RigidAlignment = this->RigidAlignment;
+  params.KeepVolumes = this->KeepVolumes;
   params.DefaultMaterial.PoissonRatio = this->PoissonRatio;
   for (const auto& entry : this->YoungModuli)
   {
@@ -148,6 +149,7 @@ void vtkCBC3DDeformation::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Penalty: " << this->Penalty << "\n";
   os << indent << "MinimumDihedralAngle: " << this->MinimumDihedralAngle << " degrees\n";
   os << indent << "RigidAlignment: " << (this->RigidAlignment ? "on" : "off") << "\n";
+  os << indent << "KeepVolumes: " << (this->KeepVolumes ? "on" : "off") << "\n";
   os << indent << "PoissonRatio: " << this->PoissonRatio << "\n";
   for (const auto& entry : this->YoungModuli)
   {

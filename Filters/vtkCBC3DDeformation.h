@@ -120,6 +120,18 @@ public:
 
   ///@{
   /**
+   * Whether, after the iterations, every surface and interface moves along its normals until
+   * each tissue holds its voxels' volume (default on), as far as the quality guard and the
+   * Hausdorff guard let it. Off leaves the surfaces where the targets put them: an inscribed
+   * surface, short of the volume of thin and curved tissues (the ventricles: 92%).
+   */
+  vtkSetMacro(KeepVolumes, bool);
+  vtkGetMacro(KeepVolumes, bool);
+  vtkBooleanMacro(KeepVolumes, bool);
+  ///@}
+
+  ///@{
+  /**
    * Elastic material: Poisson's ratio for all tissues (default 0.3) and a Young's modulus per
    * tissue label (default 1 for every tissue; only ratios matter).
    */
@@ -142,6 +154,7 @@ protected:
   double Penalty = 10.0;
   double MinimumDihedralAngle = 20.0;
   bool RigidAlignment = true;
+  bool KeepVolumes = true;
   double PoissonRatio = 0.3;
   std::map<int, double> YoungModuli;
 

@@ -70,6 +70,7 @@ int vtkCBC3DMesher::RequestData(
   deformation->SetIterations(this->Iterations);
   deformation->SetPattern(this->Pattern);
   deformation->SetTargetPlacement(this->TargetPlacement);
+  deformation->SetKeepVolumes(this->KeepVolumes);
   vtkInformation* arrayRequest = this->GetInputArrayInformation(0);
   const char* arrayName = arrayRequest && arrayRequest->Has(vtkDataObject::FIELD_NAME())
     ? arrayRequest->Get(vtkDataObject::FIELD_NAME())
@@ -161,4 +162,5 @@ void vtkCBC3DMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Iterations: " << this->Iterations << "\n";
   os << indent << "Pattern: " << this->Pattern << "\n";
   os << indent << "TargetPlacement: " << this->TargetPlacement << "\n";
+  os << indent << "KeepVolumes: " << (this->KeepVolumes ? "on" : "off") << "\n";
 }

@@ -69,6 +69,16 @@ public:
   vtkGetMacro(TargetPlacement, int);
   ///@}
 
+  ///@{
+  /**
+   * Whether deformation ends by bringing each tissue to its voxels' volume (default on); see
+   * vtkCBC3DDeformation::KeepVolumes.
+   */
+  vtkSetMacro(KeepVolumes, bool);
+  vtkGetMacro(KeepVolumes, bool);
+  vtkBooleanMacro(KeepVolumes, bool);
+  ///@}
+
 protected:
   vtkCBC3DMesher() = default;
   ~vtkCBC3DMesher() override = default;
@@ -82,6 +92,7 @@ protected:
   int Iterations = 5;
   int Pattern = 1;
   int TargetPlacement = 1; // vtkCBC3DDeformation::VOXEL_FACE
+  bool KeepVolumes = true;
 
 private:
   vtkCBC3DMesher(const vtkCBC3DMesher&) = delete;

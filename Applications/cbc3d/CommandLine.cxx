@@ -32,6 +32,7 @@ std::string UsageText()
 {
   return R"(usage: cbc3d INPUT -o OUTPUT [--bcc-size MM] [--fidelity F] [--boundary-distance MM]
              [--pattern vertex|edge|face|none] [--targets centre|face]
+             [--keep-volumes on|off]
              [--iterations N] [--background L]...
              [--threads N] [--report REPORT.json] [--quiet]
 
@@ -53,6 +54,10 @@ Mesh a 3-D label image into a conforming multi-tissue tetrahedral mesh (CBC3D).
   --targets T         where deformation targets sit: face (default; on the label
                       boundary: tissues keep their volumes) or centre (the paper's
                       boundary voxel centres: about half a voxel of depth is lost)
+  --keep-volumes on|off
+                      deformation ends by moving the surfaces along their normals
+                      until each tissue holds its voxels' volume (default on; off
+                      leaves them inscribed in the boundary, short of the volume)
   --iterations N      deformation iterations (default 5; 0 = no deformation)
   --background L      a label that is not tissue; repeat for several (default 0)
   --threads N         threads (default 0 = all cores)
@@ -177,6 +182,17 @@ bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::
         error = "--targets must be centre or face, not '" + options.Targets + "'";
         return false;
       }
+    }
+    else if (arg == "--keep-volumes")
+    {
+      if (!value(text))
+        return false;
+      if (text != "on" && text != "off")
+      {
+        error = "--keep-volumes must be on or off, not '" + text + "'";
+        return false;
+      }
+      options.KeepVolumes = text == "on";
     }
     else if (arg == "--iterations")
     {

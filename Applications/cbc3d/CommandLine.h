@@ -14,6 +14,7 @@ struct CommandLineOptions
   double BoundaryDistance = 0.0; // mm; 0 = 3/8 of the lattice size, negative = none
   std::string Pattern = "edge";
   std::string Targets = "face";   // where deformation targets sit: centre or face
+  bool KeepVolumes = true;        // deformation ends with each tissue at its voxels' volume
   int Iterations = 5;      // 0 = no deformation
   std::vector<int> BackgroundLabels = { 0 };
   int Threads = 0;         // 0 = all cores

@@ -273,7 +273,7 @@ std::string FormatJson(const RunReport& report)
   doc["output"] = o.Output;
   doc["parameters"] = { { "bcc_size_mm", report.BCCSizeUsed }, { "fidelity", o.Fidelity },
     { "boundary_distance_mm", o.BoundaryDistance },
-    { "pattern", o.Pattern }, { "targets", o.Targets }, { "iterations", o.Iterations },
+    { "pattern", o.Pattern }, { "targets", o.Targets }, { "keep_volumes", o.KeepVolumes }, { "iterations", o.Iterations },
     { "background", o.BackgroundLabels }, { "threads", o.Threads } };
   AddFigures(doc, report.Overall);
   doc["points"] = report.Points;

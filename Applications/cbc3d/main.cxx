@@ -196,6 +196,7 @@ int Run(int argc, char* argv[])
     deformation->SetPattern(PatternValue(options.Pattern));
     deformation->SetTargetPlacement(
       options.Targets == "face" ? vtkCBC3DDeformation::VOXEL_FACE : vtkCBC3DDeformation::VOXEL_CENTRE);
+    deformation->SetKeepVolumes(options.KeepVolumes);
     SetBackground(deformation, options);
     deformation->SetNumberOfThreads(options.Threads);
     if (!RunStage(deformation, "deformation", showProgress, report, error))

@@ -80,6 +80,7 @@ with tempfile.TemporaryDirectory() as work:
         ("boundary_distance_text", [PHANTOM, "-o", "OUT", "--boundary-distance", "far"], "--boundary-distance"),
         ("bad_pattern", [PHANTOM, "-o", "OUT", "--pattern", "diagonal"], "--pattern"),
         ("bad_targets", [PHANTOM, "-o", "OUT", "--targets", "middle"], "--targets"),
+        ("bad_keep_volumes", [PHANTOM, "-o", "OUT", "--keep-volumes", "yes"], "--keep-volumes"),
         ("negative_iterations", [PHANTOM, "-o", "OUT", "--iterations", "-1"], "--iterations"),
         ("bad_threads", [PHANTOM, "-o", "OUT", "--threads", "two"], "--threads"),
         ("unknown_option", [PHANTOM, "-o", "OUT", "--smooth"], "unknown option"),

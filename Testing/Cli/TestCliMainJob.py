@@ -35,6 +35,7 @@ with tempfile.TemporaryDirectory() as work:
     check(sum(t["tetrahedra"] for t in report["tissues"].values()) == report["tetrahedra"],
           "tissue tet counts add up")
     check(report["parameters"]["bcc_size_mm"] == 2.0, "report records the lattice size")
+    check(report["parameters"]["keep_volumes"] is True, "report records volume keeping (on by default)")
     # Fidelity: the lattice is within a lattice cell of the shells, never exactly on them.
     hd = report["hausdorff_mm"]
     check(isinstance(hd, float) and 0.0 < hd <= 2.0 * 3 ** 0.5, "hausdorff_mm %r within one lattice cube diagonal" % hd)
@@ -107,6 +108,11 @@ with tempfile.TemporaryDirectory() as work:
     check(default["inverted_tetrahedra"] == 0 and default["min_dihedral_deg"] >= 10 - 1e-9,
           "default mesh: no inverted tet, angles >= 10 degrees")
     check(all("fidelity_f1" in t for t in default["tissues"].values()), "default report has F1/F2 per tissue")
+    # Deformation ends by keeping volumes (the default): each shell within 3% of its voxels'.
+    for label, tissue in default["tissues"].items():
+        check(abs(tissue["volume_mm3"] / tissue["image_volume_mm3"] - 1.0) < 0.03,
+              "default run, tissue %s: mesh volume %.0f mm3 within 3%% of the image's %.0f mm3"
+              % (label, tissue["volume_mm3"], tissue["image_volume_mm3"]))
     check(abs(default["refinement"]["boundary_distance_mm"] - 3.0) < 1e-9,
           "default boundary distance is 3/8 of the 8 mm lattice: %r" % default["refinement"])
     unbound_report = os.path.join(work, "unbound.json")

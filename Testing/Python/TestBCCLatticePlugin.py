@@ -114,6 +114,10 @@ for name, printed in (("Voxel Face", "VoxelFace"), ("Voxel Centre", "VoxelCentre
     deformed.TargetPlacement = name
     check("TargetPlacement: " + printed in str(deformed.GetClientSideObject()),
           "TargetPlacement %s reaches the filter" % name)
+check("KeepVolumes: on" in str(deformed.GetClientSideObject()), "KeepVolumes defaults to on")
+deformed.KeepVolumes = 0
+check("KeepVolumes: off" in str(deformed.GetClientSideObject()), "KeepVolumes off reaches the filter")
+deformed.KeepVolumes = 1
 deformed.Iterations = 3
 deformed.UpdatePipeline()
 moved = servermanager.Fetch(deformed)
@@ -134,6 +138,10 @@ check([p.GetXMLLabel() for p in [oneshot.GetProperty(n) for n in ("LatticeSize",
       ["Lattice Size", "Fidelity", "Deformation Iterations"], "one-shot property labels")
 check("TargetPlacement: 1" in str(oneshot.GetClientSideObject()), "one-shot TargetPlacement defaults to Voxel Face")
 oneshot.TargetPlacement = "Voxel Centre"
+check("KeepVolumes: on" in str(oneshot.GetClientSideObject()), "one-shot KeepVolumes defaults to on")
+oneshot.KeepVolumes = 0
+check("KeepVolumes: off" in str(oneshot.GetClientSideObject()), "one-shot KeepVolumes reaches the filter")
+oneshot.KeepVolumes = 1
 check("TargetPlacement: 0" in str(oneshot.GetClientSideObject()), "one-shot TargetPlacement reaches the filter")
 oneshot.UpdatePipeline()
 check(servermanager.Fetch(oneshot).GetFieldData().GetArray("InvertedTetCount").GetValue(0) == 0,

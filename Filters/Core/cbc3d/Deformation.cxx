@@ -4,9 +4,11 @@
 #include "cbc3d/MeshFaces.h"
 #include "cbc3d/Parallel.h"
 #include "cbc3d/PointGrid.h"
+#include "cbc3d/Quality.h"
 #include "cbc3d/SurfacePoints.h"
 #include "cbc3d/TetGeometry.h"
 #include "cbc3d/TetTopology.h"
+#include "cbc3d/TissueVolumes.h"
 
 #include <Eigen/Geometry>
 #include <Eigen/IterativeLinearSolvers>
@@ -493,6 +495,95 @@ private:
   int Threads;
   std::vector<Tissue> Tissues;
 };
+
+enum class StepOutcome
+{
+  Made,
+  Spoilt, // no step could be found that spoils no tet
+  Aborted
+};
+
+// Tries x + share * step(p); shortens it at the vertices of tets it would invert or push past
+// the angle bound (by half each round, then not at all), and holds the vertices that would make
+// a tissue's Hausdorff distance grow, until no tet is spoilt. `trial` and `share` hold the step
+// made.
+StepOutcome GuardedStep(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
+  const std::function<Eigen::Vector3d(std::size_t)>& step, double bound, int threads,
+  FidelityGuard& fidelity, const std::function<bool()>& keepGoing,
+  std::vector<Eigen::Vector3d>& trial, std::vector<double>& share)
+{
+  trial.resize(x.size());
+  share.assign(x.size(), 1.0);
+  for (int round = 0; round < 50; ++round)
+  {
+    if (!keepGoing())
+    {
+      return StepOutcome::Aborted;
+    }
+    for (std::size_t p = 0; p < x.size(); ++p)
+    {
+      trial[p] = x[p] + share[p] * step(p);
+    }
+    const std::vector<std::int64_t> bad = BadTets(mesh, trial, bound, threads);
+    if (bad.empty())
+    {
+      if (fidelity.Hold(trial, share, keepGoing) == 0)
+      {
+        return keepGoing() ? StepOutcome::Made : StepOutcome::Aborted;
+      }
+      continue; // held for fidelity: try again with those vertices in place
+    }
+    // Once per round for each vertex, however many spoilt tets it has.
+    std::vector<char> spoilt(x.size(), 0);
+    for (const std::int64_t t : bad)
+    {
+      for (const PointId p : mesh.Tets[t])
+      {
+        spoilt[p] = 1;
+      }
+    }
+    for (std::size_t p = 0; p < x.size(); ++p)
+    {
+      if (spoilt[p])
+      {
+        share[p] = share[p] > 1.0 / 16.0 ? 0.5 * share[p] : 0.0;
+      }
+    }
+  }
+  return StepOutcome::Spoilt;
+}
+
+// Moves the surface and interface points straight along their normals until each tissue holds
+// its target volume (rounds of first-order offsets, each step guarded like a deformation step):
+// what the elastic steps left of the shortfall, where springs and held vertices fell short of
+// the offset goals.
+StepOutcome KeepVolumes(const TissueVolumeKeeper& volumes, const TetMesh& mesh,
+  const std::vector<PointId>& surface, std::vector<Eigen::Vector3d>& x, double bound, int threads,
+  FidelityGuard& fidelity, const std::function<bool()>& keepGoing)
+{
+  std::vector<char> moving(x.size(), 0);
+  for (const PointId p : surface)
+  {
+    moving[p] = 1;
+  }
+  std::vector<Eigen::Vector3d> trial;
+  std::vector<double> share;
+  // Each round's step is shortened where tets would spoil, so a few rounds may be needed.
+  for (int round = 0; round < 8 && volumes.LargestRelativeShortfall(x) > 1e-3; ++round)
+  {
+    std::vector<Eigen::Vector3d> goals = x;
+    volumes.OffsetGoals(goals, moving);
+    const StepOutcome outcome = GuardedStep(mesh, x, [&](std::size_t p) { return Eigen::Vector3d(goals[p] - x[p]); },
+      bound, threads, fidelity, keepGoing, trial, share);
+    if (outcome != StepOutcome::Made)
+    {
+      return outcome;
+    }
+    x.swap(trial);
+    fidelity.Accept(x, keepGoing);
+  }
+  return StepOutcome::Made;
+}
 } // namespace
 
 Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
@@ -567,6 +658,9 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     return Status::Ok();
   }
   const Matcher matcher(sources, targets, threads);
+  // Half a voxel per round at most: the shortfalls left are well under a voxel deep.
+  const TissueVolumeKeeper volumes(mesh, params.KeepVolumes ? TissueImageVolumes(image) : std::map<std::int32_t, double>(),
+    0.5 * image.Spacing.minCoeff());
   const std::int64_t sourceCount = static_cast<std::int64_t>(sources.Points.size());
   // Boundary voxels are dense: a grid of a few voxels per cell keeps each query short.
   FidelityGuard fidelity(image, mesh, 2.0 * image.Spacing.maxCoeff(), threads, keepGoing);
@@ -737,56 +831,17 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
       }
     }
 
-    // Try the step; shorten it at the vertices of tets it would spoil (by half each round,
-    // then not at all), until none is spoilt.
-    std::vector<Eigen::Vector3d> trial(x.size());
-    std::vector<double> share(x.size(), 1.0);
-    std::vector<std::int64_t> bad;
-    for (int round = 0; round < 50; ++round)
+    std::vector<Eigen::Vector3d> trial;
+    std::vector<double> share;
+    const StepOutcome outcome = GuardedStep(mesh, x, [&](std::size_t p) { return Eigen::Vector3d(du.segment<3>(3 * p)); },
+      bound, threads, fidelity, keepGoing, trial, share);
+    if (outcome == StepOutcome::Aborted || stop)
     {
-      if (stopped(done))
-      {
-        return Status::Aborted();
-      }
-      for (std::size_t p = 0; p < x.size(); ++p)
-      {
-        trial[p] = x[p] + share[p] * du.segment<3>(3 * p);
-      }
-      bad = BadTets(out, trial, bound, threads);
-      if (bad.empty())
-      {
-        const std::size_t held = fidelity.Hold(trial, share, keepGoing);
-        if (stop)
-        {
-          return Status::Aborted();
-        }
-        if (held == 0)
-        {
-          break;
-        }
-        bad.push_back(-1); // held for fidelity: try again with those vertices in place
-        continue;
-      }
-      // Once per round for each vertex, however many spoilt tets it has.
-      std::vector<char> spoilt(x.size(), 0);
-      for (const std::int64_t t : bad)
-      {
-        for (const PointId p : mesh.Tets[t])
-        {
-          spoilt[p] = 1;
-        }
-      }
-      for (std::size_t p = 0; p < x.size(); ++p)
-      {
-        if (spoilt[p])
-        {
-          share[p] = share[p] > 1.0 / 16.0 ? 0.5 * share[p] : 0.0;
-        }
-      }
+      return Status::Aborted();
     }
     const std::size_t heldCount = static_cast<std::size_t>(
       std::count_if(share.begin(), share.end(), [](double f) { return f < 1.0; }));
-    if (!bad.empty())
+    if (outcome == StepOutcome::Spoilt)
     {
       result.StopReason = "a step could not be made without spoiling tets; the previous mesh is kept";
       break;
@@ -815,6 +870,11 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     {
       return Status::Aborted();
     }
+  }
+  if (params.KeepVolumes && result.Iterations > 0 &&
+    KeepVolumes(volumes, mesh, sources.Points, x, bound, threads, fidelity, keepGoing) == StepOutcome::Aborted)
+  {
+    return Status::Aborted();
   }
   for (std::size_t p = 0; p < x.size(); ++p)
   {

@@ -76,6 +76,12 @@ int TestCBC3DDeformation(int, char*[])
   CHECK(std::string(deformation->GetTargetPlacementAsString()) == "VoxelCentre");
   deformation->SetTargetPlacementToVoxelFace();
   CHECK(std::string(deformation->GetTargetPlacementAsString()) == "VoxelFace");
+  CHECK(printed.str().find("KeepVolumes: on") != std::string::npos); // the default
+  deformation->KeepVolumesOff();
+  std::ostringstream printedOff;
+  deformation->Print(printedOff);
+  CHECK(printedOff.str().find("KeepVolumes: off") != std::string::npos);
+  deformation->KeepVolumesOn();
 
   vtkNew<cbc3dtest::MessageCatcher> errors;
   deformation->AddObserver(vtkCommand::ErrorEvent, errors);

@@ -1,0 +1,231 @@
+#include "cbc3d/TissueVolumes.h"
+
+#include "cbc3d/MeshFaces.h"
+
+#include <Eigen/Geometry>
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace cbc3d
+{
+namespace
+{
+constexpr std::int32_t Outside = std::numeric_limits<std::int32_t>::min();
+
+// Half the cross product: the face's area times its unit normal.
+Eigen::Vector3d AreaVector(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c)
+{
+  return 0.5 * (b - a).cross(c - a);
+}
+} // namespace
+
+TissueVolumeKeeper::TissueVolumeKeeper(
+  const TetMesh& mesh, std::map<std::int32_t, double> targets, double largestOffset)
+  : Targets(std::move(targets))
+  , LargestOffset(largestOffset)
+{
+  std::map<std::pair<std::int32_t, std::int32_t>, int> pairNumber;
+  for (const MeshFace& face : FindMeshFaces(mesh))
+  {
+    std::int64_t inner = face.Tets[0];
+    std::int32_t other = Outside;
+    if (face.TetCount == 2)
+    {
+      std::int64_t second = face.Tets[1];
+      if (mesh.Labels[inner] == mesh.Labels[second])
+      {
+        continue; // inside a tissue
+      }
+      if (mesh.Labels[second] < mesh.Labels[inner])
+      {
+        std::swap(inner, second);
+      }
+      other = mesh.Labels[second];
+    }
+    else if (face.TetCount != 1)
+    {
+      continue; // not conforming: ValidateTetMesh's business, not a volume's
+    }
+    const std::pair<std::int32_t, std::int32_t> pair(mesh.Labels[inner], other);
+    const auto [at, added] = pairNumber.emplace(pair, int(this->Pairs.size()));
+    if (added)
+    {
+      this->Pairs.push_back(pair);
+    }
+    // Orient the face away from its tissue's tet: the tet's fourth vertex lies behind it.
+    std::array<PointId, 3> p = face.Points;
+    PointId apex = -1;
+    for (const PointId q : mesh.Tets[inner])
+    {
+      apex = std::find(p.begin(), p.end(), q) == p.end() ? q : apex;
+    }
+    const auto& x = mesh.Points;
+    if (AreaVector(x[p[0]], x[p[1]], x[p[2]]).dot(x[apex] - x[p[0]]) > 0.0)
+    {
+      std::swap(p[1], p[2]);
+    }
+    this->Faces.push_back({ p, at->second });
+  }
+}
+
+std::map<std::int32_t, double> TissueVolumeKeeper::Volumes(const std::vector<Eigen::Vector3d>& x) const
+{
+  // Relative to one point of the mesh, so that far-off coordinates cost no precision.
+  const Eigen::Vector3d origin = this->Faces.empty() ? Eigen::Vector3d::Zero() : x[this->Faces[0].Points[0]];
+  std::map<std::int32_t, double> volumes;
+  for (const InterfaceFace& face : this->Faces)
+  {
+    const Eigen::Vector3d a = x[face.Points[0]] - origin;
+    const double cone = a.dot((x[face.Points[1]] - origin).cross(x[face.Points[2]] - origin)) / 6.0;
+    const auto& [first, second] = this->Pairs[face.Pair];
+    volumes[first] += cone;
+    if (second != Outside)
+    {
+      volumes[second] -= cone;
+    }
+  }
+  return volumes;
+}
+
+double TissueVolumeKeeper::LargestRelativeShortfall(const std::vector<Eigen::Vector3d>& x) const
+{
+  const auto volumes = this->Volumes(x);
+  double largest = 0.0;
+  for (const auto& [label, target] : this->Targets)
+  {
+    const auto found = volumes.find(label);
+    if (found != volumes.end() && target > 0.0)
+    {
+      largest = std::max(largest, std::abs(target - found->second) / target);
+    }
+  }
+  return largest;
+}
+
+std::vector<TissueVolumeKeeper::PointPairArea> TissueVolumeKeeper::AreasAtMovingPoints(
+  const std::vector<Eigen::Vector3d>& x, const std::vector<char>& moving) const
+{
+  std::vector<PointPairArea> areas;
+  for (const InterfaceFace& face : this->Faces)
+  {
+    const Eigen::Vector3d area = AreaVector(x[face.Points[0]], x[face.Points[1]], x[face.Points[2]]);
+    for (const PointId p : face.Points)
+    {
+      if (moving[p])
+      {
+        areas.push_back({ p, face.Pair, area });
+      }
+    }
+  }
+  std::sort(areas.begin(), areas.end(), [](const PointPairArea& a, const PointPairArea& b) {
+    return a.Point != b.Point ? a.Point < b.Point : a.Pair < b.Pair;
+  });
+  // Sum the entries of each (point, pair).
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < areas.size(); ++i)
+  {
+    if (kept > 0 && areas[kept - 1].Point == areas[i].Point && areas[kept - 1].Pair == areas[i].Pair)
+    {
+      areas[kept - 1].Area += areas[i].Area;
+    }
+    else
+    {
+      areas[kept++] = areas[i];
+    }
+  }
+  areas.resize(kept);
+  return areas;
+}
+
+// The offsets d (one per pair) that meet every target to first order with the least
+// area-weighted squares: minimise d'Wd subject to M d = shortfall, so d = W^-1 M' (M W^-1 M')^+ s.
+// M[t][p] is the volume tissue t gains when pair p's points move a unit along their normals:
+// the sum over those points of the tissue's volume gradient (a third of its area vectors
+// there: the derivative of a closed surface's volume) dotted with the pair's unit normal there.
+Eigen::VectorXd TissueVolumeKeeper::InterfaceOffsets(
+  const std::vector<PointPairArea>& areas, const std::map<std::int32_t, double>& volumes) const
+{
+  std::map<std::int32_t, int> row;
+  for (const auto& [label, target] : this->Targets)
+  {
+    if (volumes.count(label))
+    {
+      row.emplace(label, int(row.size()));
+    }
+  }
+  const int pairs = int(this->Pairs.size());
+  if (row.empty())
+  {
+    return Eigen::VectorXd::Zero(pairs);
+  }
+  Eigen::MatrixXd gain = Eigen::MatrixXd::Zero(Eigen::Index(row.size()), pairs);
+  Eigen::VectorXd weight = Eigen::VectorXd::Constant(pairs, 1e-12);
+  for (std::size_t begin = 0, end = 0; begin < areas.size(); begin = end)
+  {
+    while (end < areas.size() && areas[end].Point == areas[begin].Point)
+    {
+      ++end;
+    }
+    for (std::size_t i = begin; i < end; ++i) // the tissue whose gradient this entry adds to
+    {
+      const auto& [first, second] = this->Pairs[areas[i].Pair];
+      for (const auto& [label, sign] : { std::make_pair(first, 1.0), std::make_pair(second, -1.0) })
+      {
+        const auto r = row.find(label);
+        if (r == row.end())
+        {
+          continue;
+        }
+        const Eigen::Vector3d gradient = sign * areas[i].Area / 3.0;
+        for (std::size_t j = begin; j < end; ++j) // the pair that moves
+        {
+          const double length = areas[j].Area.norm();
+          if (length > 0.0)
+          {
+            gain(r->second, areas[j].Pair) += gradient.dot(areas[j].Area / length);
+          }
+        }
+      }
+    }
+    for (std::size_t j = begin; j < end; ++j)
+    {
+      weight[areas[j].Pair] += areas[j].Area.norm() / 3.0;
+    }
+  }
+  Eigen::VectorXd shortfall(row.size());
+  for (const auto& [label, r] : row)
+  {
+    shortfall[r] = this->Targets.at(label) - volumes.at(label);
+  }
+  const Eigen::MatrixXd spread = weight.cwiseInverse().asDiagonal() * gain.transpose();
+  const Eigen::VectorXd multipliers = (gain * spread).completeOrthogonalDecomposition().solve(shortfall);
+  Eigen::VectorXd offsets = spread * multipliers;
+  for (Eigen::Index p = 0; p < offsets.size(); ++p)
+  {
+    offsets[p] = std::clamp(offsets[p], -this->LargestOffset, this->LargestOffset);
+  }
+  return offsets;
+}
+
+double TissueVolumeKeeper::OffsetGoals(std::vector<Eigen::Vector3d>& goals, const std::vector<char>& moving) const
+{
+  if (this->Faces.empty() || this->Targets.empty())
+  {
+    return 0.0;
+  }
+  const std::vector<PointPairArea> areas = this->AreasAtMovingPoints(goals, moving);
+  const Eigen::VectorXd offsets = this->InterfaceOffsets(areas, this->Volumes(goals));
+  for (const PointPairArea& entry : areas)
+  {
+    const double length = entry.Area.norm();
+    if (length > 0.0)
+    {
+      goals[entry.Point] += offsets[entry.Pair] * entry.Area / length;
+    }
+  }
+  return offsets.size() ? offsets.cwiseAbs().maxCoeff() : 0.0;
+}
+} // namespace cbc3d

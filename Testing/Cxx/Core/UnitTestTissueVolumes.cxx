@@ -1,0 +1,110 @@
+#include "cbc3d/Quality.h"
+#include "cbc3d/TissueVolumes.h"
+
+#include "TestMeshes.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using cbc3d::testing::KuhnGrid;
+
+namespace
+{
+// Offsets the goals, starting from the points themselves, `rounds` times (each round a
+// first-order step from where the last one ended), with every surface point moving.
+std::vector<Eigen::Vector3d> OffsetRounds(const cbc3d::TissueVolumeKeeper& keeper, const cbc3d::TetMesh& mesh, int rounds)
+{
+  std::vector<Eigen::Vector3d> goals = mesh.Points;
+  const std::vector<char> moving(mesh.Points.size(), 1); // interior points have no area: they stay
+  for (int round = 0; round < rounds; ++round)
+    keeper.OffsetGoals(goals, moving);
+  return goals;
+}
+} // namespace
+
+TEST(TissueVolumes, VolumesFromTheBoundaryAreTheTetsVolumes)
+{
+  // Two unit cubes per tissue side by side, and a third tissue of one cube above.
+  const auto mesh = KuhnGrid(4, 1, 2, [](int, int, int z) { return true; },
+    [](int x, int, int z, int) { return z == 1 ? 3 : (x < 2 ? 1 : 2); });
+  const cbc3d::TissueVolumeKeeper keeper(mesh, {}, 1.0);
+  const auto volumes = keeper.Volumes(mesh.Points);
+  EXPECT_NEAR(volumes.at(1), 2.0, 1e-12);
+  EXPECT_NEAR(volumes.at(2), 2.0, 1e-12);
+  EXPECT_NEAR(volumes.at(3), 4.0, 1e-12);
+  // The same as summing the tets, far from the origin too.
+  auto far = mesh;
+  for (auto& p : far.Points)
+    p += Eigen::Vector3d(1e5, -2e5, 3e5);
+  const auto byTets = cbc3d::TissueMeshVolumes(far);
+  for (const auto& [label, volume] : cbc3d::TissueVolumeKeeper(far, {}, 1.0).Volumes(far.Points))
+    EXPECT_NEAR(volume, byTets.at(label), 1e-6);
+}
+
+TEST(TissueVolumes, AGrownCubeMovesItsFacesOutwardOnly)
+{
+  // A 3x3x3 cube of unit cubes that should hold 10% more: its faces move out along their
+  // normals, its interior points stay, and the volume reaches the target within 0.1% in a few
+  // first-order rounds.
+  const auto mesh = KuhnGrid(3, 3, 3, [](int, int, int) { return true; }, [](int, int, int, int) { return 1; });
+  const cbc3d::TissueVolumeKeeper keeper(mesh, { { 1, 29.7 } }, 1.0);
+  const auto goals = OffsetRounds(keeper, mesh, 4);
+  EXPECT_NEAR(keeper.Volumes(goals).at(1), 29.7, 0.03);
+  const Eigen::Vector3d centre(1.5, 1.5, 1.5);
+  for (std::size_t p = 0; p < mesh.Points.size(); ++p)
+  {
+    const Eigen::Vector3d& x = mesh.Points[p];
+    const bool onSurface = x.minCoeff() == 0.0 || x.maxCoeff() == 3.0;
+    if (!onSurface)
+      EXPECT_EQ(goals[p], x) << "interior point " << p;
+    else
+      EXPECT_GT((goals[p] - centre).norm(), (x - centre).norm()) << "surface point " << p;
+  }
+  // In one round a face's middle point moves straight along the face's normal (later rounds
+  // start from a cube whose corners have moved, so its faces are no longer flat).
+  const auto middle = cbc3d::PointId(1 + 4 * (1 + 4 * 0)); // (1, 1, 0) on the face z = 0
+  const auto first = OffsetRounds(keeper, mesh, 1);
+  EXPECT_NEAR((first[middle] - mesh.Points[middle]).head<2>().norm(), 0.0, 1e-12);
+  EXPECT_LT(first[middle].z(), 0.0);
+}
+
+TEST(TissueVolumes, TwoTissuesTradeVolumeAcrossTheirInterface)
+{
+  // Tissue 1 should hold 1.2 and tissue 2 0.8 of their one unit cube each. The least
+  // area-weighted squares spread each shortfall over a tissue's boundary: the interface moves
+  // toward tissue 2, tissue 1's outer faces move out and tissue 2's in.
+  const auto mesh = KuhnGrid(2, 1, 1, [](int, int, int) { return true; },
+    [](int x, int, int, int) { return x == 0 ? 1 : 2; });
+  const cbc3d::TissueVolumeKeeper keeper(mesh, { { 1, 1.2 }, { 2, 0.8 } }, 1.0);
+  const auto goals = OffsetRounds(keeper, mesh, 4);
+  const auto volumes = keeper.Volumes(goals);
+  EXPECT_NEAR(volumes.at(1), 1.2, 1e-3);
+  EXPECT_NEAR(volumes.at(2), 0.8, 1e-3);
+  for (std::size_t p = 0; p < mesh.Points.size(); ++p)
+  {
+    const Eigen::Vector3d& x = mesh.Points[p];
+    if (x.x() == 1.0)
+      EXPECT_GT(goals[p].x(), 1.05) << "interface point " << p;
+    else if (x.x() == 0.0)
+      EXPECT_LT(goals[p].x(), 0.0) << "tissue 1's outer face";
+    else
+      EXPECT_LT(goals[p].x(), 2.0) << "tissue 2's outer face";
+  }
+}
+
+TEST(TissueVolumes, OffsetsAreBoundedAndFreeTissuesAreLeftAlone)
+{
+  const auto mesh = KuhnGrid(2, 2, 2, [](int, int, int) { return true; }, [](int, int, int, int) { return 1; });
+  // A target far beyond reach: one call moves no point farther than the bound.
+  const cbc3d::TissueVolumeKeeper bounded(mesh, { { 1, 1000.0 } }, 0.25);
+  std::vector<Eigen::Vector3d> goals = mesh.Points;
+  EXPECT_NEAR(bounded.OffsetGoals(goals, std::vector<char>(goals.size(), 1)), 0.25, 1e-12);
+  for (std::size_t p = 0; p < goals.size(); ++p)
+    EXPECT_LE((goals[p] - mesh.Points[p]).norm(), 0.25 + 1e-12);
+  // No target: nothing moves.
+  const cbc3d::TissueVolumeKeeper free(mesh, { { 7, 3.0 } }, 1.0);
+  goals = mesh.Points;
+  EXPECT_EQ(free.OffsetGoals(goals, std::vector<char>(goals.size(), 1)), 0.0);
+  EXPECT_EQ(goals, mesh.Points);
+}
