@@ -5,7 +5,9 @@
 #   - no tissue in more face-connected pieces than the image has 6-connected components of 8
 #     voxels or more (cbc3d's default MinimumComponentVoxels);
 #   - the whole mesh one face-connected piece where the image's tissues together are one piece;
-#   - the brain's surface Euler characteristic equal to that of its voxel-face surface.
+#   - the brain's surface Euler characteristic equal to that of its voxel-face surface;
+#   - every tissue of 1,000 voxels or more holds its voxels' volume within 3% (within 5% on the
+#     two multi-tissue heads), its tets' volumes summed here with numpy.
 # Skips (77) without ../shared/data.
 import os
 import subprocess
@@ -14,7 +16,8 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cbc3d_testing import Checks, shared_data_or_skip  # noqa: E402
+from cbc3d_testing import Checks, read_nifti_header, shared_data_or_skip  # noqa: E402
+import numpy as np  # noqa: E402
 import mesh_topology as mt  # noqa: E402
 
 shared = shared_data_or_skip()
@@ -23,8 +26,16 @@ check = Checks()
 MINIMUM_VOXELS = 8
 CASES = [("cbc3d-brain.nii.gz", [0]), ("cbc3d-nidus.nii.gz", [0]), ("cbc3d-ventricles.nii.gz", [0]),
          ("nipype-tissue-labels.nii.gz", [0]), ("itk-t1-kmeans-labels.nii.gz", [1])]
+VOLUME_TOLERANCE = {"nipype-tissue-labels.nii.gz": 0.05, "itk-t1-kmeans-labels.nii.gz": 0.05}  # else 3%
 SETTINGS = [("defaults", []),
             ("paper", ["--bcc-size", "8", "--fidelity", "0.95", "--pattern", "edge", "--iterations", "5"])]
+
+
+def tissue_volumes(points, tets, labels):
+    """Each label's volume: its tets' signed volumes summed."""
+    p = points[tets]
+    volumes = np.einsum("ij,ij->i", np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), p[:, 3] - p[:, 0]) / 6.0
+    return {int(label): float(volumes[labels == label].sum()) for label in np.unique(labels)}
 
 
 def sound(name, r):
@@ -40,7 +51,11 @@ with tempfile.TemporaryDirectory() as work:
         path = os.path.join(shared, name)
         if not check(os.path.isfile(path), "%s present in %s" % (name, shared)):
             continue
-        image = mt.image_report(mt.read_nifti(path), background=background, minimum_voxels=MINIMUM_VOXELS)
+        voxels = mt.read_nifti(path)
+        image = mt.image_report(voxels, background=background, minimum_voxels=MINIMUM_VOXELS)
+        voxel_volume = abs(float(np.prod(read_nifti_header(path)["pixdim"][1:4])))
+        labels_in_image, counts = np.unique(voxels, return_counts=True)
+        voxel_counts = dict(zip(labels_in_image.astype(int).tolist(), counts.tolist()))
         for label, r in image.items():
             print("     %s image %s: %s" % (name, "tissue %s" % label if label != "all" else "(all tissues)",
                                             mt.format_image("", r)[2:]))
@@ -69,6 +84,14 @@ with tempfile.TemporaryDirectory() as work:
                       "%s tissue %d: %d face-connected pieces, image %d components of %d+ voxels"
                       % (tag, label, r["face_components"], image[label]["components"], 1))
             sound("%s whole mesh" % tag, mesh["all"])
+            tolerance = VOLUME_TOLERANCE.get(name, 0.03)
+            volumes = tissue_volumes(points, tets, labels)
+            for label, count in sorted(voxel_counts.items()):
+                if label in background or count < 1000:
+                    continue
+                share = volumes.get(label, 0.0) / (count * voxel_volume)
+                check(abs(share - 1.0) <= tolerance, "%s tissue %d: %.1f%% of its %d voxels' volume (within %d%%)"
+                      % (tag, label, 100.0 * share, count, round(100 * tolerance)))
             # Specks under MINIMUM_VOXELS are dropped by the mesher, so they do not count here.
             if image["all"]["components_kept"] == 1:
                 check(mesh["all"]["face_components"] == 1,

@@ -9,6 +9,8 @@
 # of balls (blocks, plates, the blocks that touch along an edge or at a corner, joined or not) is
 # meshed into balls, so V - E + F = 2 x pieces (a handle or a cavity the image lacks breaks it);
 # a solid torus 0, a thick spherical shell 4, a ball 2, exactly, at lattices that resolve them.
+# A spherical shell two voxels thick in a 64^3 image of 3.9 mm voxels (a skull-like image, coarse
+# for the default lattice) must also hold its voxels' volume within 3% at the defaults.
 # Controls first: the same checks fail on hand-made bad meshes (hinged, non-manifold, inverted,
 # an extra piece, a handle) and pass on good ones, so that the test can fail.
 import os
@@ -248,6 +250,24 @@ for name, image, options, extra in phantoms():
                r["nonmanifold_edges"], r["nonmanifold_vertices"], r["euler"],
                image_figures[key]["euler"] if key in image_figures else 0)
             for key, r in report.items())))
+
+# A thin shell of coarse voxels (a skull at 3.9 mm): radii 25 to 27 voxels in 64^3, meshed at
+# the defaults. Sound, and its voxels' volume within 3% (deformation keeps volumes).
+x, y, z = centres((64, 64, 64))
+d = np.sqrt((x - 32) ** 2 + (y - 32) ** 2 + (z - 32) ** 2)
+shell = ((d > 25) & (d <= 27)).astype(np.int16)
+path = os.path.join(OUTPUT, "coarse_thin_shell.nii")
+write_nifti(path, shell.shape, shell.transpose(2, 1, 0).ravel().tolist(), dtype="int16", pixdim=(1.0, 3.9, 3.9, 3.9))
+mesh_path = os.path.join(OUTPUT, "coarse_thin_shell.vtu")
+run = subprocess.run([CLI, path, "-o", mesh_path, "--threads", "2", "--quiet"], capture_output=True, text=True)
+if check(run.returncode == 0, "coarse thin shell: cbc3d exits 0 %s" % run.stderr.strip()):
+    points, tets, labels = mt.read_mesh(mesh_path)
+    results, report, image_figures = verify(points, tets, labels, shell)
+    for ok, message in results:
+        check(ok, "coarse thin shell: %s" % message)
+    share = signed_volumes(points, tets).sum() / (int(shell.sum()) * 3.9 ** 3)
+    check(abs(share - 1.0) <= 0.03, "coarse thin shell: %.1f%% of its voxels' volume (within 3%%); surface Euler %d "
+          "(image %d)" % (100.0 * share, report[1]["euler"], image_figures[1]["euler"]))
 
 # Bare checkerboards (8^3, in a margin of 4): no tissue has a 6-component of 8 voxels, so a
 # sound mesh has no tet at all; cbc3d must refuse with a message and write no mesh.
