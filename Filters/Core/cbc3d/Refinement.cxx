@@ -143,31 +143,49 @@ std::map<std::int64_t, std::int32_t> PinComponents(const LabelImage& image,
   const std::vector<char>& componentInMesh)
 {
   constexpr std::size_t FewTets = 2;
-  std::map<std::int32_t, std::map<std::int32_t, std::int64_t>> holders; // component -> tet -> voxels
+  // A component in the mesh needs only whether FewTets tets or fewer hold it (its first tets,
+  // up to one more than that); a missing one needs every holder's count, but missing ones are
+  // rare.
+  const std::size_t count = components.Label.size();
+  std::vector<std::vector<std::int32_t>> fewHolders(count);
+  std::map<std::int32_t, std::map<std::int32_t, std::int64_t>> missing; // component -> tet -> voxels
   for (std::size_t v = 0; v < image.Labels.size(); ++v)
   {
     const std::int32_t component = components.ComponentOfVoxel[v], owner = mesh.VoxelOwner[v];
-    if (component >= 0 && owner >= 0 && !IsSmall(components, component, minimumVoxels) &&
-      (!componentInMesh[component] || mesh.Labels[owner] == components.Label[component]))
+    if (component < 0 || owner < 0 || IsSmall(components, component, minimumVoxels))
     {
-      ++holders[component][owner];
+      continue;
+    }
+    if (!componentInMesh[component])
+    {
+      ++missing[component][owner];
+    }
+    else if (mesh.Labels[owner] == components.Label[component])
+    {
+      auto& holders = fewHolders[component];
+      if (holders.size() <= FewTets && std::find(holders.begin(), holders.end(), owner) == holders.end())
+      {
+        holders.push_back(owner);
+      }
     }
   }
   std::map<std::int64_t, std::int32_t> pinned;
-  for (const auto& [component, tets] : holders)
+  for (std::size_t component = 0; component < count; ++component)
   {
     const std::int32_t label = components.Label[component];
-    if (!componentInMesh[component])
+    const auto found = missing.find(std::int32_t(component));
+    if (found != missing.end())
     {
+      const auto& tets = found->second;
       const auto best = std::max_element(tets.begin(), tets.end(),
         [](const auto& a, const auto& b) { return a.second < b.second; }); // first of equals wins
       mesh.Labels[best->first] = label;
       pinned[best->first] = label;
     }
-    else if (tets.size() <= FewTets)
+    else if (fewHolders[component].size() <= FewTets)
     {
-      for (const auto& entry : tets)
-        pinned[entry.first] = label;
+      for (const std::int32_t tet : fewHolders[component])
+        pinned[tet] = label;
     }
   }
   return pinned;
