@@ -22,13 +22,14 @@ TissueComponents FindTissueComponents(const LabelImage& image);
 /// The 6-connected components of the background (all background labels together).
 struct BackgroundComponents
 {
-  std::vector<std::int32_t> ComponentOfVoxel; // -1 for tissue voxels
-  std::vector<std::int64_t> Size;             // per component: its voxel count
-  std::vector<char> TouchesBorder;            // per component: it reaches the image border
+  std::vector<std::int32_t> ComponentOfVoxel; // -1 for tissue voxels and beyond the layer
+  std::vector<std::int64_t> Size;             // per component: its voxel count within the box
+  std::vector<char> TouchesBorder;            // per component: it is the outside
 };
 
-/// Labels the face-connected components of the background; the ones on the image border are
-/// the outside, the others cavities.
+/// Labels the face-connected components of the background within the tissues' bounding box and
+/// one voxel around it (the rest is all outside); the ones that reach that layer or the image
+/// border are the outside (TouchesBorder), the others cavities. Voxels beyond the layer are -1.
 BackgroundComponents FindBackgroundComponents(const LabelImage& image);
 } // namespace cbc3d
 
