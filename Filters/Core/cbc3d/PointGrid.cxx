@@ -72,7 +72,7 @@ int PointGrid::NearestAny(const Eigen::Vector3d& x) const
   int nearest = -1;
   for (double radius = this->Cell; nearest < 0; radius *= 2.0)
   {
-    nearest = this->Nearest(x, radius);
+    nearest = this->NearestInCube(x, radius, [](int) { return true; });
   }
   return nearest;
 }

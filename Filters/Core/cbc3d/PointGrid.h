@@ -16,7 +16,8 @@ public:
   PointGrid(const std::vector<Eigen::Vector3d>& points, double cell);
 
   /// The nearest point within `radius` that `accept(index)` takes; -1 if none. Ties go to the
-  /// lower index, so the answer does not depend on the order of the search.
+  /// lower index, so the answer does not depend on the order of the search. The search widens
+  /// from one cell, doubling, up to `radius`: a large radius costs little where a point is near.
   template <typename Accept>
   int Nearest(const Eigen::Vector3d& x, double radius, const Accept& accept) const;
 
@@ -35,6 +36,10 @@ private:
   // clamped range of cells still holds every point within reach).
   Eigen::Vector3i CellOf(const Eigen::Vector3d& x) const;
 
+  // The nearest accepted point within `radius`, over every cell of the cube around x.
+  template <typename Accept>
+  int NearestInCube(const Eigen::Vector3d& x, double radius, const Accept& accept) const;
+
   const std::vector<Eigen::Vector3d>& Points;
   double Cell;
   Eigen::Vector3d Origin = Eigen::Vector3d::Zero();
@@ -45,6 +50,22 @@ private:
 
 template <typename Accept>
 int PointGrid::Nearest(const Eigen::Vector3d& x, double radius, const Accept& accept) const
+{
+  // Exact: an accepted point found within r is the nearest, since a nearer one (or an equal
+  // one of lower index) lies within r too.
+  for (double r = this->Cell; r < radius; r *= 2.0)
+  {
+    const int found = this->NearestInCube(x, r, accept);
+    if (found >= 0)
+    {
+      return found;
+    }
+  }
+  return this->NearestInCube(x, radius, accept);
+}
+
+template <typename Accept>
+int PointGrid::NearestInCube(const Eigen::Vector3d& x, double radius, const Accept& accept) const
 {
   if (this->Sorted.empty())
   {
