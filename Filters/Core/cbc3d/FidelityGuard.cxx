@@ -1,0 +1,198 @@
+#include "cbc3d/FidelityGuard.h"
+
+#include "cbc3d/Parallel.h"
+#include "cbc3d/SurfacePoints.h"
+
+#include <algorithm>
+
+namespace cbc3d
+{
+FidelityGuard::FidelityGuard(const LabelImage& image, const TetMesh& mesh, double cell,
+  int threads, const std::function<bool()>& keepGoing)
+  : Cell(cell)
+  , Threads(threads)
+{
+  const auto vertices = TissueSurfaceVertices(mesh);
+  const auto voxels = TissueBoundaryVoxels(image, threads);
+  for (const auto& [label, ids] : vertices)
+  {
+    const auto found = voxels.find(label);
+    if (found != voxels.end())
+    {
+      Tissue tissue{ label, ids };
+      for (const std::int64_t voxel : found->second)
+      {
+        tissue.Voxels.push_back(image.VoxelCentre(voxel));
+      }
+      this->Tissues.push_back(std::move(tissue));
+    }
+  }
+  for (Tissue& tissue : this->Tissues)
+  {
+    if (!keepGoing())
+    {
+      return;
+    }
+    tissue.Grid = std::make_unique<PointGrid>(tissue.Voxels, cell);
+    tissue.Current = std::make_unique<Snapshot>(tissue.Vertices, mesh.Points, cell);
+    tissue.Hausdorff = this->Measure(tissue, *tissue.Current);
+  }
+}
+
+std::size_t FidelityGuard::Hold(const std::vector<Eigen::Vector3d>& trial, std::vector<double>& share,
+  const std::function<bool()>& keepGoing) const
+{
+  std::vector<char> hold(trial.size(), 0);
+  for (const Tissue& tissue : this->Tissues)
+  {
+    if (!keepGoing())
+    {
+      return 0;
+    }
+    const double limit = tissue.Hausdorff * (1.0 + 1e-12);
+    const std::int64_t vertexCount = static_cast<std::int64_t>(tissue.Vertices.size());
+#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
+    for (std::int64_t i = 0; i < vertexCount; ++i)
+    {
+      const PointId v = tissue.Vertices[i];
+      if (share[v] > 0.0 && tissue.Grid->Nearest(trial[v], limit) < 0)
+      {
+        hold[v] = 1; // each vertex appears once in a tissue's list
+      }
+    }
+    const Snapshot after(tissue.Vertices, trial, this->Cell);
+    const Snapshot& current = *tissue.Current;
+    const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Voxels.size());
+#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
+    for (std::int64_t i = 0; i < voxelCount; ++i)
+    {
+      const Eigen::Vector3d& voxel = tissue.Voxels[i];
+      // Still within the limit of its nearest vertex after that vertex's move: covered,
+      // with no search (most voxels, as most moves are short).
+      const int nearest = current.NearestVertex[i];
+      const Eigen::Vector3d& was = current.Points[nearest];
+      if ((voxel - was).norm() + (trial[tissue.Vertices[nearest]] - was).norm() <= limit)
+      {
+        continue;
+      }
+      if (after.Grid->Nearest(voxel, limit) < 0)
+      {
+        const int covering = tissue.Current->Grid->Nearest(voxel, limit);
+        if (covering >= 0 && share[tissue.Vertices[covering]] > 0.0)
+        {
+#pragma omp atomic write
+          hold[tissue.Vertices[covering]] = 1;
+        }
+      }
+    }
+  }
+  std::size_t held = 0;
+  for (std::size_t p = 0; p < hold.size(); ++p)
+  {
+    if (hold[p])
+    {
+      share[p] = 0.0;
+      ++held;
+    }
+  }
+  return held;
+}
+
+bool FidelityGuard::AcceptIfNoneGrows(const std::vector<Eigen::Vector3d>& points, const std::function<bool()>& keepGoing)
+{
+  std::vector<std::unique_ptr<Snapshot>> snapshots;
+  std::vector<double> measured;
+  for (const Tissue& tissue : this->Tissues)
+  {
+    if (!keepGoing())
+    {
+      return false;
+    }
+    snapshots.push_back(std::make_unique<Snapshot>(tissue.Vertices, points, this->Cell));
+    measured.push_back(this->Measure(tissue, *snapshots.back()));
+    if (measured.back() > tissue.Hausdorff * (1.0 + 1e-12))
+    {
+      return false;
+    }
+  }
+  for (std::size_t t = 0; t < measured.size(); ++t)
+  {
+    this->Tissues[t].Hausdorff = measured[t];
+    this->Tissues[t].Current = std::move(snapshots[t]);
+  }
+  return true;
+}
+
+void FidelityGuard::Accept(const std::vector<Eigen::Vector3d>& points, const std::function<bool()>& keepGoing)
+{
+  for (Tissue& tissue : this->Tissues)
+  {
+    if (!keepGoing())
+    {
+      return;
+    }
+    tissue.Current = std::make_unique<Snapshot>(tissue.Vertices, points, this->Cell);
+    tissue.Hausdorff = std::min(tissue.Hausdorff, this->Measure(tissue, *tissue.Current));
+  }
+}
+
+void FidelityGuard::Steer(const std::vector<double>& reach, const std::vector<double>& search,
+  std::vector<Eigen::Vector3d>& goal, std::vector<char>& steered) const
+{
+  goal.assign(reach.size(), Eigen::Vector3d::Zero());
+  steered.assign(reach.size(), 0);
+  std::vector<double> farthest(reach);
+  auto offer = [&](PointId v, const Eigen::Vector3d& voxel, double d) {
+    if (d > farthest[v])
+    {
+      farthest[v] = d;
+      goal[v] = voxel;
+      steered[v] = 1;
+    }
+  };
+  for (const Tissue& tissue : this->Tissues) // voxels far from every vertex first
+  {
+    const Snapshot& current = *tissue.Current;
+    for (std::size_t i = 0; i < tissue.Voxels.size(); ++i)
+    {
+      const int nearest = current.NearestVertex[i];
+      offer(tissue.Vertices[nearest], tissue.Voxels[i], (tissue.Voxels[i] - current.Points[nearest]).norm());
+    }
+  }
+  for (const Tissue& tissue : this->Tissues) // then vertices far from every voxel
+  {
+    const Snapshot& current = *tissue.Current;
+    for (std::size_t i = 0; i < tissue.Vertices.size(); ++i)
+    {
+      const PointId v = tissue.Vertices[i];
+      const int voxel = current.NearestVoxel[i];
+      const double d = (tissue.Voxels[voxel] - current.Points[i]).norm();
+      if (d < search[v])
+      {
+        offer(v, tissue.Voxels[voxel], d);
+      }
+    }
+  }
+}
+
+double FidelityGuard::Measure(const Tissue& tissue, Snapshot& at) const
+{
+  // The farthest of `from` from `to`, keeping each one's nearest; a max reduction is exact:
+  // the same for any thread count.
+  auto farthest = [this](const std::vector<Eigen::Vector3d>& from, const PointGrid& to,
+                    const std::vector<Eigen::Vector3d>& toPoints, std::vector<int>& nearest) {
+    double worst = 0.0;
+    const std::int64_t count = static_cast<std::int64_t>(from.size());
+    nearest.resize(count);
+#pragma omp parallel for schedule(dynamic, 256) reduction(max : worst) num_threads(ThreadCount(this->Threads))
+    for (std::int64_t i = 0; i < count; ++i)
+    {
+      nearest[i] = to.NearestAny(from[i]);
+      worst = std::max(worst, nearest[i] < 0 ? 0.0 : (toPoints[nearest[i]] - from[i]).norm());
+    }
+    return worst;
+  };
+  return std::max(farthest(at.Points, *tissue.Grid, tissue.Voxels, at.NearestVoxel),
+    farthest(tissue.Voxels, *at.Grid, at.Points, at.NearestVertex));
+}
+} // namespace cbc3d

@@ -1,0 +1,108 @@
+#include "cbc3d/GuardedStep.h"
+
+#include "cbc3d/Parallel.h"
+#include "cbc3d/TetGeometry.h"
+
+namespace cbc3d
+{
+std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
+  double minimumRadians, int threads)
+{
+  const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
+  std::vector<char> bad(count, 0);
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
+  for (std::int64_t t = 0; t < count; ++t)
+  {
+    const Tet& tet = mesh.Tets[t];
+    if (!(SignedVolume(x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]) > 0.0))
+    {
+      bad[t] = 1;
+      continue;
+    }
+    bad[t] = !DihedralAnglesWithin(x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]], minimumRadians);
+  }
+  std::vector<std::int64_t> result;
+  for (std::int64_t t = 0; t < count; ++t)
+  {
+    if (bad[t])
+    {
+      result.push_back(t);
+    }
+  }
+  return result;
+}
+
+StepOutcome GuardedStep(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
+  const std::function<Eigen::Vector3d(std::size_t)>& step, double bound, int threads,
+  FidelityGuard& fidelity, const std::function<bool()>& keepGoing,
+  std::vector<Eigen::Vector3d>& trial, std::vector<double>& share)
+{
+  trial.resize(x.size());
+  share.assign(x.size(), 1.0);
+  for (int round = 0; round < 50; ++round)
+  {
+    if (!keepGoing())
+    {
+      return StepOutcome::Aborted;
+    }
+    for (std::size_t p = 0; p < x.size(); ++p)
+    {
+      trial[p] = x[p] + share[p] * step(p);
+    }
+    const std::vector<std::int64_t> bad = BadTets(mesh, trial, bound, threads);
+    if (bad.empty())
+    {
+      if (fidelity.Hold(trial, share, keepGoing) == 0)
+      {
+        return keepGoing() ? StepOutcome::Made : StepOutcome::Aborted;
+      }
+      continue; // held for fidelity: try again with those vertices in place
+    }
+    // Once per round for each vertex, however many spoilt tets it has.
+    std::vector<char> spoilt(x.size(), 0);
+    for (const std::int64_t t : bad)
+    {
+      for (const PointId p : mesh.Tets[t])
+      {
+        spoilt[p] = 1;
+      }
+    }
+    for (std::size_t p = 0; p < x.size(); ++p)
+    {
+      if (spoilt[p])
+      {
+        share[p] = share[p] > 1.0 / 16.0 ? 0.5 * share[p] : 0.0;
+      }
+    }
+  }
+  return StepOutcome::Spoilt;
+}
+
+StepOutcome RestoreTissueVolumes(const TissueVolumeKeeper& volumes, const TetMesh& mesh,
+  const std::vector<PointId>& surface, std::vector<Eigen::Vector3d>& x, double bound, int threads,
+  FidelityGuard& fidelity, const std::function<bool()>& keepGoing)
+{
+  std::vector<char> moving(x.size(), 0);
+  for (const PointId p : surface)
+  {
+    moving[p] = 1;
+  }
+  std::vector<Eigen::Vector3d> trial;
+  std::vector<double> share;
+  // Each round's step is shortened where tets would spoil, so a few rounds may be needed.
+  for (int round = 0; round < 8 && volumes.LargestRelativeShortfall(x) > 1e-3; ++round)
+  {
+    std::vector<Eigen::Vector3d> goals = x;
+    volumes.OffsetGoals(goals, moving);
+    const StepOutcome outcome = GuardedStep(mesh, x, [&](std::size_t p) { return Eigen::Vector3d(goals[p] - x[p]); },
+      bound, threads, fidelity, keepGoing, trial, share);
+    if (outcome != StepOutcome::Made)
+    {
+      return outcome;
+    }
+    x.swap(trial);
+    fidelity.Accept(x, keepGoing);
+  }
+  return StepOutcome::Made;
+}
+} // namespace cbc3d

@@ -1,0 +1,44 @@
+#ifndef cbc3d_GuardedStep_h
+#define cbc3d_GuardedStep_h
+
+#include "cbc3d/FidelityGuard.h"
+#include "cbc3d/TetMesh.h"
+#include "cbc3d/TissueVolumes.h"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace cbc3d
+{
+/// The tets that points at `x` would invert or push past the angle bound (radians).
+std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
+  double minimumRadians, int threads);
+
+enum class StepOutcome
+{
+  Made,
+  Spoilt, // no step could be found that spoils no tet
+  Aborted
+};
+
+/// Tries x + share * step(p); shortens it at the vertices of tets it would invert or push past
+/// the angle bound (by half each round, then not at all), and holds the vertices that would make
+/// a tissue's Hausdorff distance grow, until no tet is spoilt. `trial` and `share` hold the step
+/// made.
+StepOutcome GuardedStep(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
+  const std::function<Eigen::Vector3d(std::size_t)>& step, double bound, int threads,
+  FidelityGuard& fidelity, const std::function<bool()>& keepGoing,
+  std::vector<Eigen::Vector3d>& trial, std::vector<double>& share);
+
+/// Moves the surface and interface points straight along their normals until each tissue holds
+/// its target volume (rounds of first-order offsets, each a guarded step): what the elastic
+/// steps left of the shortfall, where springs and held vertices fell short of the goals.
+StepOutcome RestoreTissueVolumes(const TissueVolumeKeeper& volumes, const TetMesh& mesh,
+  const std::vector<PointId>& surface, std::vector<Eigen::Vector3d>& x, double bound, int threads,
+  FidelityGuard& fidelity, const std::function<bool()>& keepGoing);
+} // namespace cbc3d
+
+#endif

@@ -1,0 +1,24 @@
+#ifndef cbc3d_SurfaceSources_h
+#define cbc3d_SurfaceSources_h
+
+#include "cbc3d/BoundaryTargets.h"
+#include "cbc3d/TetMesh.h"
+
+#include <vector>
+
+namespace cbc3d
+{
+/// The deformation's sources: surface and interface vertices with their label-sets, and every vertex's element size.
+struct SurfaceSources
+{
+  std::vector<PointId> Points;
+  std::vector<LabelSet> Labels;
+  std::vector<double> LocalSize; // per mesh point: mean length of the edges at it
+};
+
+/// The mesh's surface and interface vertices, each with the labels of its tets (plus
+/// OutsideLabel on the outer surface), and every vertex's element size.
+SurfaceSources FindSurfaceSources(const TetMesh& mesh);
+} // namespace cbc3d
+
+#endif
