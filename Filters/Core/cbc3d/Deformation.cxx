@@ -27,14 +27,301 @@ namespace
 // Rigid fits per iteration at most (each matches again): an offset of a few voxels needs
 // about ten.
 constexpr int MaximumRigidRounds = 20;
-} // namespace
 
-Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
-  TetMesh& out, DeformationResult& result, const Progress& progress)
+// Setting up and every iteration take seconds on large meshes: a stop request is looked for
+// between the steps, and inside the longest ones through KeepGoing() (reporting the fraction
+// last reached). A stop, once seen, is kept: a step cut short is never used.
+class StopRequests
 {
-  out = mesh;
-  result = DeformationResult();
-  result.Displacement.assign(mesh.Points.size(), Eigen::Vector3d::Zero());
+public:
+  explicit StopRequests(const Progress& progress)
+    : Report(progress)
+  {
+  }
+  bool Stopped(double fraction)
+  {
+    this->Reached = fraction;
+    this->Stop = this->Stop || !cbc3d::KeepGoing(this->Report, fraction);
+    return this->Stop;
+  }
+  bool Stopped() const { return this->Stop; }
+  const std::function<bool()> KeepGoing = [this] { return !this->Stopped(this->Reached); };
+
+private:
+  const Progress& Report;
+  bool Stop = false;
+  double Reached = 0.0;
+};
+
+// The smallest margin of any dihedral angle from 0 or 180 degrees (radians).
+double SmallestAngleMargin(const TetMesh& mesh)
+{
+  double smallest = M_PI;
+  for (const Tet& tet : mesh.Tets)
+    for (const double a : DihedralAngles(mesh.Points[tet[0]], mesh.Points[tet[1]], mesh.Points[tet[2]], mesh.Points[tet[3]]))
+      smallest = std::min({ smallest, a, M_PI - a });
+  return smallest;
+}
+
+// The paper's registration iterations over a set-up mesh: matching, a rigid fit, steering the
+// farthest vertices, an elastic step with the goals as penalty springs, guarded.
+class Registration
+{
+public:
+  Registration(const TetMesh& mesh, const SurfaceSources& sources, const Matcher& matcher,
+    FidelityGuard& fidelity, const Eigen::SparseMatrix<double>& stiffness,
+    const DeformationParams& params, double bound, double negligibleMove)
+    : Mesh(mesh)
+    , Sources(sources)
+    , Match(matcher)
+    , Fidelity(fidelity)
+    , Stiffness(stiffness)
+    , Params(params)
+    , Bound(bound)
+    , NegligibleMove(negligibleMove)
+    , Smoothing(mesh.Tets, mesh.Points.size())
+    , Reach(mesh.Points.size())
+    , Search(mesh.Points.size())
+    , Interior(mesh.Points.size(), 1)
+    , Du(Eigen::VectorXd::Zero(stiffness.rows()))
+  {
+    // (K + P) du = P d: K the stiffness, P the springs tying each matched source to its goal.
+    // Conjugate gradients with a diagonal preconditioner, warm-started from the previous step.
+    // (Measured on the brain and the k-means head: twice as fast as an incomplete-Cholesky
+    // preconditioner, in less memory and to the same result; a sparse direct factorisation was
+    // 20 times slower: 3-D meshes fill in badly.)
+    this->Solver.setTolerance(1e-6);
+    this->Solver.setMaxIterations(50); // per call: the solve runs in chunks so that a stop is seen soon
+    // How far from the image a vertex may lie before it is steered, and how far it looks.
+    for (std::size_t p = 0; p < mesh.Points.size(); ++p)
+    {
+      this->Reach[p] = 0.5 * sources.LocalSize[p];
+      this->Search[p] = 3.0 * sources.LocalSize[p];
+    }
+    for (const PointId p : sources.Points)
+    {
+      this->Interior[p] = 0;
+    }
+  }
+
+  /// One iteration from the points at x (moved in place when a step is made): the sources'
+  /// mean goal distance in `moved`, the vertices held back in `held`.
+  StepOutcome Iterate(std::vector<Eigen::Vector3d>& x, double done, StopRequests& stops, double& moved,
+    std::size_t& held)
+  {
+    // Goals, approached by at most one element size; unmatched sources keep their place.
+    std::vector<Eigen::Vector3d> goals;
+    std::vector<char> matched;
+    this->Match.Match(x, goals, matched);
+    if (this->Params.RigidAlignment && !this->AlignRigidly(x, goals, matched, stops, done))
+    {
+      return StepOutcome::Aborted;
+    }
+    this->SteerFarthest(goals, matched);
+    Eigen::VectorXd rhs, springs;
+    moved = this->SpringLoads(x, goals, matched, rhs, springs);
+    if (stops.Stopped(done) || !this->SolveElasticStep(rhs, springs, stops, done))
+    {
+      return StepOutcome::Aborted;
+    }
+    std::vector<Eigen::Vector3d> trial;
+    std::vector<double> share;
+    const StepOutcome outcome = GuardedStep(this->Mesh, x,
+      [&](std::size_t p) { return Eigen::Vector3d(this->Du.segment<3>(3 * p)); }, this->Bound,
+      this->Params.NumberOfThreads, this->Fidelity, stops.KeepGoing, trial, share);
+    if (outcome == StepOutcome::Aborted || stops.Stopped())
+    {
+      return StepOutcome::Aborted;
+    }
+    held = static_cast<std::size_t>(std::count_if(share.begin(), share.end(), [](double f) { return f < 1.0; }));
+    if (outcome == StepOutcome::Made)
+    {
+      x.swap(trial);
+      this->MakeRoom(x, share);
+      this->Fidelity.Accept(x, stops.KeepGoing);
+    }
+    return outcome;
+  }
+
+private:
+  // The rigid part of the match first (rotation and translation, Umeyama's least squares): it
+  // moves the mesh without straining a tet, where the elastic step alone would have its
+  // strained tets held back by the quality guard. Matching again after each move and fitting
+  // again (an ICP loop) until the move is negligible, so that a mesh offset from its image
+  // follows it whole before any elastic step bends it toward half-found matches. False when
+  // stopped.
+  bool AlignRigidly(std::vector<Eigen::Vector3d>& x, std::vector<Eigen::Vector3d>& goals,
+    std::vector<char>& matched, StopRequests& stops, double done)
+  {
+    const std::int64_t sourceCount = static_cast<std::int64_t>(this->Sources.Points.size());
+    for (int round = 0; round < MaximumRigidRounds; ++round)
+    {
+      const std::int64_t count = std::count(matched.begin(), matched.end(), 1);
+      if (count < 4)
+      {
+        break;
+      }
+      Eigen::Matrix3Xd from(3, count), to(3, count);
+      for (std::int64_t s = 0, i = 0; s < sourceCount; ++s)
+      {
+        if (matched[s])
+        {
+          from.col(i) = x[this->Sources.Points[s]];
+          to.col(i++) = goals[s];
+        }
+      }
+      const Eigen::Isometry3d rigid(Eigen::umeyama(from, to, false));
+      std::vector<Eigen::Vector3d> trial(x.size());
+      double largestMove = 0.0;
+      for (std::size_t p = 0; p < x.size(); ++p)
+      {
+        trial[p] = rigid * x[p];
+        largestMove = std::max(largestMove, (trial[p] - x[p]).norm());
+      }
+      if (largestMove < this->NegligibleMove ||
+        !BadTets(this->Mesh, trial, this->Bound, this->Params.NumberOfThreads).empty() ||
+        !this->Fidelity.AcceptIfNoneGrows(trial, stops.KeepGoing))
+      {
+        break;
+      }
+      x.swap(trial);
+      this->Placement = rigid * this->Placement;
+      this->Match.Match(x, goals, matched);
+      if (stops.Stopped(done))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // Then the vertices that set a tissue's Hausdorff distance, wherever the matches left them
+  // (after the rigid move, which they do not steer): a vertex farther than half its element
+  // size from the boundary voxels of one of its tissues, or nearest to a boundary voxel
+  // farther than that, heads for that voxel.
+  void SteerFarthest(std::vector<Eigen::Vector3d>& goals, std::vector<char>& matched) const
+  {
+    std::vector<Eigen::Vector3d> steeredGoal;
+    std::vector<char> steered;
+    this->Fidelity.Steer(this->Reach, this->Search, steeredGoal, steered);
+    for (std::size_t s = 0; s < this->Sources.Points.size(); ++s)
+    {
+      if (steered[this->Sources.Points[s]])
+      {
+        goals[s] = steeredGoal[this->Sources.Points[s]];
+        matched[s] = 1;
+      }
+    }
+  }
+
+  // Each source's spring (Penalty times its own diagonal stiffness) and the load pulling it to
+  // its goal; returns the sum of the distances to the goals.
+  double SpringLoads(const std::vector<Eigen::Vector3d>& x, const std::vector<Eigen::Vector3d>& goals,
+    const std::vector<char>& matched, Eigen::VectorXd& rhs, Eigen::VectorXd& springs) const
+  {
+    rhs = Eigen::VectorXd::Zero(this->Stiffness.rows());
+    springs = Eigen::VectorXd::Zero(this->Stiffness.rows());
+    const std::int64_t sourceCount = static_cast<std::int64_t>(this->Sources.Points.size());
+    double moved = 0.0;
+#pragma omp parallel for schedule(dynamic, 64) reduction(+ : moved) num_threads(ThreadCount(this->Params.NumberOfThreads))
+    for (std::int64_t s = 0; s < sourceCount; ++s)
+    {
+      const PointId p = this->Sources.Points[s];
+      const double size = this->Sources.LocalSize[p];
+      for (int c = 0; c < 3; ++c)
+      {
+        springs[3 * p + c] = this->Params.Penalty * this->Stiffness.coeff(3 * p + c, 3 * p + c);
+      }
+      if (!matched[s])
+      {
+        continue; // held in place by its spring, rather than drift with its neighbours
+      }
+      // Never farther than one element size from where the vertex started (after the rigid
+      // moves), so vertices cannot drift along a boundary over the iterations.
+      const Eigen::Vector3d start = this->Placement * this->Mesh.Points[p];
+      Eigen::Vector3d goal = goals[s];
+      if ((goal - start).norm() > size)
+      {
+        goal = start + (goal - start) * (size / (goal - start).norm());
+      }
+      const Eigen::Vector3d d = goal - x[p];
+      moved += d.norm();
+      for (int c = 0; c < 3; ++c)
+      {
+        rhs[3 * p + c] = springs[3 * p + c] * d[c];
+      }
+    }
+    return moved;
+  }
+
+  // Solves (K + P) du = P d into Du, in chunks; false when stopped.
+  bool SolveElasticStep(const Eigen::VectorXd& rhs, const Eigen::VectorXd& springs, StopRequests& stops, double done)
+  {
+    // A faint anchor on every point keeps pieces of the mesh that no spring holds (a small
+    // component with no match) in place, where the bare stiffness would let them float.
+    Eigen::SparseMatrix<double> system = this->Stiffness;
+    for (int i = 0; i < system.rows(); ++i)
+    {
+      system.coeffRef(i, i) += springs[i] + 1e-6 * this->Stiffness.coeff(i, i);
+    }
+    if (stops.Stopped(done))
+    {
+      return false;
+    }
+    this->Solver.compute(system);
+    for (int chunk = 0; chunk < 20; ++chunk)
+    {
+      this->Du = this->Solver.solveWithGuess(rhs, this->Du);
+      if (this->Solver.info() == Eigen::Success)
+      {
+        break;
+      }
+      if (stops.Stopped(done))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // Interior vertices around the held ones make room for them on the next step.
+  void MakeRoom(std::vector<Eigen::Vector3d>& x, const std::vector<double>& share) const
+  {
+    std::vector<char> movable(x.size(), 0);
+    for (const Tet& tet : this->Mesh.Tets)
+    {
+      if (std::any_of(tet.begin(), tet.end(), [&](PointId p) { return share[p] < 1.0; }))
+      {
+        for (const PointId p : tet)
+        {
+          movable[p] = this->Interior[p];
+        }
+      }
+    }
+    this->Smoothing.Smooth(x, movable, 2);
+  }
+
+  const TetMesh& Mesh;
+  const SurfaceSources& Sources;
+  const Matcher& Match;
+  FidelityGuard& Fidelity;
+  const Eigen::SparseMatrix<double>& Stiffness;
+  const DeformationParams& Params;
+  const double Bound;          // the angle bound of every step (radians)
+  const double NegligibleMove; // a rigid fit that moves no point farther ends its loop
+  const InteriorSmoothing Smoothing;
+  std::vector<double> Reach, Search; // per point: when it is steered, and how far it looks
+  std::vector<char> Interior;        // per point: not a source
+  Eigen::VectorXd Du;                // the last elastic step (the next solve starts from it)
+  Eigen::Isometry3d Placement = Eigen::Isometry3d::Identity(); // the rigid moves so far
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
+    Eigen::DiagonalPreconditioner<double>>
+    Solver;
+};
+
+// The image, the mesh and the parameters' ranges, or an error naming what is wrong.
+Status ValidateInputs(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params)
+{
   const Status valid = ValidateLabelImage(image);
   if (!valid.IsOk())
   {
@@ -51,45 +338,41 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     return Status::Error("deformation needs iterations >= 0, a positive penalty and a minimum "
                          "dihedral angle from 0 to 60 degrees");
   }
+  return Status::Ok();
+}
+} // namespace
+
+Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
+  TetMesh& out, DeformationResult& result, const Progress& progress)
+{
+  out = mesh;
+  result = DeformationResult();
+  result.Displacement.assign(mesh.Points.size(), Eigen::Vector3d::Zero());
+  const Status valid = ValidateInputs(image, mesh, params);
+  if (!valid.IsOk())
+  {
+    return valid;
+  }
   if (params.Iterations == 0 || mesh.Tets.empty())
   {
     result.StopReason = "no deformation asked (0 iterations)";
     return Status::Ok();
   }
   const int threads = params.NumberOfThreads;
-  const double minimumRadians = params.MinimumDihedralAngle / RadiansToDegrees;
   // The starting mesh must itself satisfy the bound, or no step could ever be checked against it.
-  const double startingMinimum = [&] {
-    double smallest = M_PI;
-    for (const Tet& tet : mesh.Tets)
-      for (const double a : DihedralAngles(mesh.Points[tet[0]], mesh.Points[tet[1]], mesh.Points[tet[2]], mesh.Points[tet[3]]))
-        smallest = std::min({ smallest, a, M_PI - a });
-    return smallest;
-  }();
-  const double bound = std::min(minimumRadians, startingMinimum);
-
-  // Setting up and every iteration take seconds on large meshes: look for a stop request
-  // between the steps, and inside the longest ones through `keepGoing` (reporting the
-  // fraction last reached). A stop, once seen, is kept: a step cut short is never used.
-  bool stop = false;
-  double reached = 0.0;
-  auto stopped = [&](double fraction) {
-    reached = fraction;
-    stop = stop || !KeepGoing(progress, fraction);
-    return stop;
-  };
-  const std::function<bool()> keepGoing = [&] { return !stopped(reached); };
-  if (stopped(0.01))
+  const double bound = std::min(params.MinimumDihedralAngle / RadiansToDegrees, SmallestAngleMargin(mesh));
+  StopRequests stops(progress);
+  if (stops.Stopped(0.01))
   {
     return Status::Aborted();
   }
   const SurfaceSources sources = FindSurfaceSources(mesh);
-  if (stopped(0.02))
+  if (stops.Stopped(0.02))
   {
     return Status::Aborted();
   }
   const std::vector<BoundaryTarget> targets = FindBoundaryTargets(image, params.Pattern, params.Placement);
-  if (stopped(0.04))
+  if (stops.Stopped(0.04))
   {
     return Status::Aborted();
   }
@@ -104,218 +387,47 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   // Half a voxel per round at most: the shortfalls left are well under a voxel deep.
   const TissueVolumeKeeper volumes(mesh, params.KeepVolumes ? TissueImageVolumes(image) : std::map<std::int32_t, double>(),
     0.5 * image.Spacing.minCoeff());
-  const std::int64_t sourceCount = static_cast<std::int64_t>(sources.Points.size());
   // Boundary voxels are dense: a grid of a few voxels per cell keeps each query short.
-  FidelityGuard fidelity(image, mesh, 2.0 * image.Spacing.maxCoeff(), threads, keepGoing);
-  if (stopped(0.07))
+  FidelityGuard fidelity(image, mesh, 2.0 * image.Spacing.maxCoeff(), threads, stops.KeepGoing);
+  if (stops.Stopped(0.07))
   {
     return Status::Aborted();
   }
   const Eigen::SparseMatrix<double> stiffness = AssembleStiffness(mesh, params.Materials,
-    params.DefaultMaterial, threads, [&](double fraction) { return !stopped(0.07 + 0.03 * fraction); });
-  if (stopped(0.1))
+    params.DefaultMaterial, threads, [&](double fraction) { return !stops.Stopped(0.07 + 0.03 * fraction); });
+  if (stops.Stopped(0.1))
   {
     return Status::Aborted();
   }
-  // (K + P) du = P d: K the stiffness, P the springs tying each matched source to its goal.
-  // Conjugate gradients with a diagonal preconditioner, warm-started from the previous step.
-  // (Measured on the brain and the k-means head: twice as fast as an incomplete-Cholesky
-  // preconditioner, in less memory and to the same result; a sparse direct factorisation was
-  // 20 times slower: 3-D meshes fill in badly.)
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
-    Eigen::DiagonalPreconditioner<double>>
-    cg;
-  cg.setTolerance(1e-6);
-  cg.setMaxIterations(50); // per call: the solve runs in chunks so that a stop is seen soon
   std::vector<Eigen::Vector3d>& x = out.Points;
-  const InteriorSmoothing smoothing(mesh.Tets, x.size());
-  // How far from the image a vertex may lie before it is steered, and how far it looks.
-  std::vector<double> reach(x.size()), search(x.size());
-  for (std::size_t p = 0; p < x.size(); ++p)
-  {
-    reach[p] = 0.5 * sources.LocalSize[p];
-    search[p] = 3.0 * sources.LocalSize[p];
-  }
-  std::vector<char> interior(x.size(), 1);
-  for (const PointId p : sources.Points)
-  {
-    interior[p] = 0;
-  }
-  Eigen::VectorXd du = Eigen::VectorXd::Zero(stiffness.rows());
-  Eigen::Isometry3d placement = Eigen::Isometry3d::Identity(); // the rigid moves so far
-  const double negligibleMove = 0.01 * image.Spacing.minCoeff(); // a rigid fit that ends its loop
+  Registration registration(mesh, sources, matcher, fidelity, stiffness, params, bound,
+    0.01 * image.Spacing.minCoeff());
   for (int iteration = 0; iteration < params.Iterations; ++iteration)
   {
-    const double done = 0.1 + 0.9 * double(iteration) / params.Iterations;
-    // Goals, approached by at most one element size; unmatched sources keep their place.
-    std::vector<Eigen::Vector3d> goals;
-    std::vector<char> matched;
-    matcher.Match(x, goals, matched);
-
-    // The rigid part of the match first (rotation and translation, Umeyama's least squares):
-    // it moves the mesh without straining a tet, where the elastic step alone would have its
-    // strained tets held back by the quality guard. Matching again after each move and fitting
-    // again (an ICP loop) until the move is negligible, so that a mesh offset from its image
-    // follows it whole before any elastic step bends it toward half-found matches.
-    if (params.RigidAlignment)
-    {
-      for (int round = 0; round < MaximumRigidRounds; ++round)
-      {
-        const std::int64_t count = std::count(matched.begin(), matched.end(), 1);
-        if (count < 4)
-        {
-          break;
-        }
-        Eigen::Matrix3Xd from(3, count), to(3, count);
-        for (std::int64_t s = 0, i = 0; s < sourceCount; ++s)
-        {
-          if (matched[s])
-          {
-            from.col(i) = x[sources.Points[s]];
-            to.col(i++) = goals[s];
-          }
-        }
-        const Eigen::Isometry3d rigid(Eigen::umeyama(from, to, false));
-        std::vector<Eigen::Vector3d> trial(x.size());
-        double largestMove = 0.0;
-        for (std::size_t p = 0; p < x.size(); ++p)
-        {
-          trial[p] = rigid * x[p];
-          largestMove = std::max(largestMove, (trial[p] - x[p]).norm());
-        }
-        if (largestMove < negligibleMove || !BadTets(out, trial, bound, threads).empty() ||
-          !fidelity.AcceptIfNoneGrows(trial, keepGoing))
-        {
-          break;
-        }
-        x.swap(trial);
-        placement = rigid * placement;
-        matcher.Match(x, goals, matched);
-        if (stopped(done))
-        {
-          return Status::Aborted();
-        }
-      }
-    }
-
-    // Then the vertices that set a tissue's Hausdorff distance, wherever the matches left them
-    // (after the rigid move, which they do not steer): a vertex farther than half its element
-    // size from the boundary voxels of one of its tissues, or nearest to a boundary voxel
-    // farther than that, heads for that voxel.
-    std::vector<Eigen::Vector3d> steeredGoal;
-    std::vector<char> steered;
-    fidelity.Steer(reach, search, steeredGoal, steered);
-    for (std::int64_t s = 0; s < sourceCount; ++s)
-    {
-      if (steered[sources.Points[s]])
-      {
-        goals[s] = steeredGoal[sources.Points[s]];
-        matched[s] = 1;
-      }
-    }
-
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(stiffness.rows());
-    Eigen::VectorXd springs = Eigen::VectorXd::Zero(stiffness.rows());
     double moved = 0.0;
-#pragma omp parallel for schedule(dynamic, 64) reduction(+ : moved) num_threads(ThreadCount(threads))
-    for (std::int64_t s = 0; s < sourceCount; ++s)
-    {
-      const PointId p = sources.Points[s];
-      const double size = sources.LocalSize[p];
-      for (int c = 0; c < 3; ++c)
-      {
-        springs[3 * p + c] = params.Penalty * stiffness.coeff(3 * p + c, 3 * p + c);
-      }
-      if (!matched[s])
-      {
-        continue; // held in place by its spring, rather than drift with its neighbours
-      }
-      // Never farther than one element size from where the vertex started (after the rigid
-      // moves), so vertices cannot drift along a boundary over the iterations.
-      const Eigen::Vector3d start = placement * mesh.Points[p];
-      Eigen::Vector3d goal = goals[s];
-      if ((goal - start).norm() > size)
-      {
-        goal = start + (goal - start) * (size / (goal - start).norm());
-      }
-      const Eigen::Vector3d d = goal - x[p];
-      moved += d.norm();
-      for (int c = 0; c < 3; ++c)
-      {
-        rhs[3 * p + c] = springs[3 * p + c] * d[c];
-      }
-    }
-    if (stopped(done))
+    std::size_t held = 0;
+    const StepOutcome outcome =
+      registration.Iterate(x, 0.1 + 0.9 * double(iteration) / params.Iterations, stops, moved, held);
+    if (outcome == StepOutcome::Aborted)
     {
       return Status::Aborted();
     }
-    // A faint anchor on every point keeps pieces of the mesh that no spring holds (a small
-    // component with no match) in place, where the bare stiffness would let them float.
-    Eigen::SparseMatrix<double> system = stiffness;
-    for (int i = 0; i < system.rows(); ++i)
-    {
-      system.coeffRef(i, i) += springs[i] + 1e-6 * stiffness.coeff(i, i);
-    }
-    if (stopped(done))
-    {
-      return Status::Aborted();
-    }
-    cg.compute(system);
-    for (int chunk = 0; chunk < 20; ++chunk)
-    {
-      du = cg.solveWithGuess(rhs, du);
-      if (cg.info() == Eigen::Success)
-      {
-        break;
-      }
-      if (stopped(done))
-      {
-        return Status::Aborted();
-      }
-    }
-
-    std::vector<Eigen::Vector3d> trial;
-    std::vector<double> share;
-    const StepOutcome outcome = GuardedStep(mesh, x, [&](std::size_t p) { return Eigen::Vector3d(du.segment<3>(3 * p)); },
-      bound, threads, fidelity, keepGoing, trial, share);
-    if (outcome == StepOutcome::Aborted || stop)
-    {
-      return Status::Aborted();
-    }
-    const std::size_t heldCount = static_cast<std::size_t>(
-      std::count_if(share.begin(), share.end(), [](double f) { return f < 1.0; }));
     if (outcome == StepOutcome::Spoilt)
     {
       result.StopReason = "a step could not be made without spoiling tets; the previous mesh is kept";
       break;
     }
-    x.swap(trial);
-    {
-      // Interior vertices around the held ones make room for them on the next step.
-      std::vector<char> movable(x.size(), 0);
-      for (const Tet& tet : mesh.Tets)
-      {
-        if (std::any_of(tet.begin(), tet.end(), [&](PointId p) { return share[p] < 1.0; }))
-        {
-          for (const PointId p : tet)
-          {
-            movable[p] = interior[p];
-          }
-        }
-      }
-      smoothing.Smooth(x, movable, 2);
-    }
-    fidelity.Accept(x, keepGoing);
     ++result.Iterations;
-    result.MeanStep.push_back(moved / double(sourceCount));
-    result.HeldVertices.push_back(heldCount);
-    if (stopped(0.1 + 0.9 * double(iteration + 1) / params.Iterations))
+    result.MeanStep.push_back(moved / double(sources.Points.size()));
+    result.HeldVertices.push_back(held);
+    if (stops.Stopped(0.1 + 0.9 * double(iteration + 1) / params.Iterations))
     {
       return Status::Aborted();
     }
   }
   if (params.KeepVolumes && result.Iterations > 0 &&
-    RestoreTissueVolumes(volumes, mesh, sources.Points, x, bound, threads, fidelity, keepGoing) == StepOutcome::Aborted)
+    RestoreTissueVolumes(volumes, mesh, sources.Points, x, bound, threads, fidelity, stops.KeepGoing) ==
+      StepOutcome::Aborted)
   {
     return Status::Aborted();
   }
