@@ -9,10 +9,6 @@
 
 namespace cbc3d
 {
-/// The tets across each tet's faces in a conforming mesh: Across[t][i] is the tet sharing the
-/// face opposite local vertex i of tet t, or -1 on the mesh boundary.
-std::vector<std::array<std::int64_t, 4>> FaceNeighbours(const std::vector<Tet>& tets, std::size_t pointCount);
-
 /// How much tet `tet` wants class `cls`: its voxel weight of that class. Relabelling a tet from
 /// a to b costs Votes(tet, a) - Votes(tet, b).
 using ClassVotes = std::function<std::int64_t(std::int64_t tet, std::int32_t cls)>;

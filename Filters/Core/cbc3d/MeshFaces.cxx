@@ -62,4 +62,28 @@ std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t po
   }
   return faces;
 }
+
+std::vector<std::array<std::int64_t, 4>> FaceNeighbours(const std::vector<Tet>& tets, std::size_t pointCount)
+{
+  std::vector<std::array<std::int64_t, 4>> across(tets.size(), { -1, -1, -1, -1 });
+  for (const MeshFace& face : FindMeshFaces(tets, pointCount))
+  {
+    if (face.TetCount != 2)
+    {
+      continue;
+    }
+    for (int side = 0; side < 2; ++side)
+    {
+      const Tet& tet = tets[face.Tets[side]];
+      for (int i = 0; i < 4; ++i)
+      {
+        if (std::find(face.Points.begin(), face.Points.end(), tet[i]) == face.Points.end())
+        {
+          across[face.Tets[side]][i] = face.Tets[1 - side];
+        }
+      }
+    }
+  }
+  return across;
+}
 } // namespace cbc3d

@@ -21,6 +21,10 @@ struct MeshFace
 /// on the smallest vertex), in ascending vertex order.
 std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount);
 
+/// The tets across each tet's faces in a conforming mesh: Across[t][i] is the tet sharing the
+/// face opposite local vertex i of tet t, or -1 on the mesh boundary.
+std::vector<std::array<std::int64_t, 4>> FaceNeighbours(const std::vector<Tet>& tets, std::size_t pointCount);
+
 /// Every distinct face of the mesh.
 inline std::vector<MeshFace> FindMeshFaces(const TetMesh& mesh)
 {

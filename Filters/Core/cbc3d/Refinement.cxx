@@ -2,6 +2,7 @@
 
 #include "cbc3d/BoundaryCoverage.h"
 #include "cbc3d/ManifoldRepair.h"
+#include "cbc3d/MeshFaces.h"
 #include "cbc3d/Parallel.h"
 #include "cbc3d/RedGreenMesh.h"
 #include "cbc3d/SoundLabels.h"
@@ -377,7 +378,8 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   }
 
   // Spikes on the surface would keep their tips off the image boundary through deformation.
-  if (RemoveSurfaceEars(mesh.Tets, hierarchy.Points().size(), mesh.Labels,
+  const auto across = FaceNeighbours(mesh.Tets, hierarchy.Points().size());
+  if (RemoveSurfaceEars(mesh.Tets, across, hierarchy.Points().size(), mesh.Labels,
         [&](std::int32_t label) { return label != NoLabel && image.IsTissue(label); }, NoLabel) > 0)
   {
     fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
@@ -390,7 +392,6 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   bool measured = false; // the fidelity is that of the labels as they are
   if (params.SoundLabels)
   {
-    const auto across = FaceNeighbours(mesh.Tets, hierarchy.Points().size());
     for (int round = 0; round < SoundLabelRounds && !measured; ++round)
     {
       result.Relabelled += MakeLabelsSound(image, components, params.MinimumComponentVoxels,

@@ -1,18 +1,13 @@
 #include "cbc3d/SurfaceEars.h"
 
-#include "cbc3d/MeshFaces.h"
-
-#include <algorithm>
 
 namespace cbc3d
 {
-std::size_t RemoveSurfaceEars(const std::vector<Tet>& tets, std::size_t pointCount,
+std::size_t RemoveSurfaceEars(const std::vector<Tet>& tets,
+  const std::vector<std::array<std::int64_t, 4>>& across, std::size_t pointCount,
   std::vector<std::int32_t>& labels, const std::function<bool(std::int32_t)>& isTissue,
   std::int32_t removed)
 {
-  // The tets on each face, looked up by the face's ascending vertices.
-  std::vector<MeshFace> faces = FindMeshFaces(tets, pointCount);
-  std::sort(faces.begin(), faces.end(), [](const MeshFace& a, const MeshFace& b) { return a.Points < b.Points; });
   std::size_t relabelled = 0;
   for (bool changed = true; changed;)
   {
@@ -34,14 +29,7 @@ std::size_t RemoveSurfaceEars(const std::vector<Tet>& tets, std::size_t pointCou
         {
           continue;
         }
-        std::array<PointId, 3> base;
-        for (int v = 0, b = 0; v < 4; ++v)
-          if (v != tip)
-            base[b++] = tets[t][v];
-        std::sort(base.begin(), base.end());
-        const auto& pair = std::lower_bound(faces.begin(), faces.end(), base,
-          [](const MeshFace& face, const std::array<PointId, 3>& points) { return face.Points < points; })->Tets;
-        const std::int64_t other = pair[0] == std::int64_t(t) ? pair[1] : pair[0];
+        const std::int64_t other = across[t][tip]; // the tet on the base
         if (other >= 0 && labels[other] == labels[t])
         {
           labels[t] = removed;

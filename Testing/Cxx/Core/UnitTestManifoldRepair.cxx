@@ -3,6 +3,7 @@
 // the mesh's before the repair. After it, the topology measure (MeshTopology, written apart
 // from the repair) must find every tissue and the whole body manifold.
 #include "cbc3d/ManifoldRepair.h"
+#include "cbc3d/MeshFaces.h"
 #include "cbc3d/MeshTopology.h"
 
 #include "TestMeshes.h"

@@ -1,5 +1,6 @@
 // Surface ears and interior smoothing: the two mesh clean-ups that help deformation.
 #include "cbc3d/InteriorSmoothing.h"
+#include "cbc3d/MeshFaces.h"
 #include "cbc3d/SurfaceEars.h"
 #include "cbc3d/TetGeometry.h"
 
@@ -44,14 +45,14 @@ TEST(SurfaceEars, AnEarOnACubeFaceGoesAndTheCubeStays)
   ASSERT_GT(cbc3d::SignedVolume(mesh.Points[1], mesh.Points[3], mesh.Points[7], mesh.Points[8]), 0.0);
   mesh.Labels.push_back(1);
   std::vector<std::int32_t> labels = mesh.Labels;
-  EXPECT_EQ(cbc3d::RemoveSurfaceEars(mesh.Tets, mesh.Points.size(), labels, IsTissue, 0), 1u);
+  EXPECT_EQ(cbc3d::RemoveSurfaceEars(mesh.Tets, cbc3d::FaceNeighbours(mesh.Tets, mesh.Points.size()), mesh.Points.size(), labels, IsTissue, 0), 1u);
   EXPECT_EQ(labels.back(), 0);
   EXPECT_TRUE(std::all_of(labels.begin(), labels.end() - 1, [](std::int32_t l) { return l == 1; }));
 
   // An ear of another tissue sits on an interface, not on a spike: it stays.
   labels = mesh.Labels;
   labels.back() = 2;
-  EXPECT_EQ(cbc3d::RemoveSurfaceEars(mesh.Tets, mesh.Points.size(), labels, IsTissue, 0), 0u);
+  EXPECT_EQ(cbc3d::RemoveSurfaceEars(mesh.Tets, cbc3d::FaceNeighbours(mesh.Tets, mesh.Points.size()), mesh.Points.size(), labels, IsTissue, 0), 0u);
   EXPECT_EQ(labels.back(), 2);
 }
 
@@ -60,7 +61,7 @@ TEST(SurfaceEars, ALoneTetStays)
   // Every vertex of a lone tet is used once, but no tet of its label holds its base.
   const std::vector<cbc3d::Tet> tets = { { 0, 1, 2, 3 } };
   std::vector<std::int32_t> labels = { 1 };
-  EXPECT_EQ(cbc3d::RemoveSurfaceEars(tets, 4, labels, IsTissue, 0), 0u);
+  EXPECT_EQ(cbc3d::RemoveSurfaceEars(tets, cbc3d::FaceNeighbours(tets, 4), 4, labels, IsTissue, 0), 0u);
   EXPECT_EQ(labels[0], 1);
 }
 
