@@ -1,0 +1,37 @@
+#include "cbc3d/MeshExport.h"
+
+#include "cbc3d/AbaqusWriter.h"
+#include "cbc3d/FEBioWriter.h"
+#include "cbc3d/GmshWriter.h"
+#include "cbc3d/MeditWriter.h"
+#include "cbc3d/XdmfWriter.h"
+
+namespace cbc3d
+{
+bool IsExportExtension(const std::string& extension)
+{
+  return extension == ".msh" || extension == ".inp" || extension == ".mesh" ||
+    extension == ".feb" || extension == ".xdmf";
+}
+
+std::string ExportExtensions()
+{
+  return ".msh, .inp, .mesh, .feb, .xdmf";
+}
+
+Status WriteExport(
+  const TaggedMesh& mesh, const std::string& extension, std::ostream& out, bool gmsh22)
+{
+  if (extension == ".msh")
+    return WriteGmsh(mesh, out, gmsh22);
+  if (extension == ".inp")
+    return WriteAbaqus(mesh, out);
+  if (extension == ".mesh")
+    return WriteMedit(mesh, out);
+  if (extension == ".feb")
+    return WriteFEBio(mesh, out);
+  if (extension == ".xdmf")
+    return WriteXdmf(mesh, out);
+  return Status::Error("no solver format for the extension '" + extension + "'");
+}
+} // namespace cbc3d

@@ -1,0 +1,24 @@
+#ifndef cbc3d_MeshExport_h
+#define cbc3d_MeshExport_h
+
+#include "cbc3d/Status.h"
+#include "cbc3d/TaggedMesh.h"
+
+#include <ostream>
+#include <string>
+
+namespace cbc3d
+{
+/// The solver formats the tagged mesh goes to, chosen by file extension: .msh (Gmsh 4.1, or
+/// 2.2 with `gmsh22`), .inp (Abaqus), .mesh (Medit), .feb (FEBio), .xdmf (dolfinx's XDMF).
+bool IsExportExtension(const std::string& extension);
+
+/// The extensions above, for messages: ".msh, .inp, .mesh, .feb, .xdmf".
+std::string ExportExtensions();
+
+/// Writes the mesh in the format of `extension` (lower case, with its dot).
+Status WriteExport(
+  const TaggedMesh& mesh, const std::string& extension, std::ostream& out, bool gmsh22 = false);
+} // namespace cbc3d
+
+#endif
