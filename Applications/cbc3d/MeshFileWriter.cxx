@@ -20,9 +20,6 @@
 #include <functional>
 #include <unistd.h>
 
-namespace
-{
-// Runs `write` on a temporary file beside `path` and renames it into place on success.
 bool WriteAtomically(const std::string& path, std::string& error,
   const std::function<bool(const std::string&, std::string&)>& write)
 {
@@ -41,6 +38,8 @@ bool WriteAtomically(const std::string& path, std::string& error,
   return true;
 }
 
+namespace
+{
 bool CanCreate(const std::string& path, std::string& error)
 {
   std::ofstream probe(path, std::ios::binary);

@@ -2,6 +2,7 @@
 // mesh with vtkCBC3DMeshQuality, and writes the mesh (and a JSON report) all or nothing.
 #include "CommandLine.h"
 #include "ErrorCapture.h"
+#include "ExportFileWriter.h"
 #include "ImageFileReader.h"
 #include "MeshFileWriter.h"
 #include "Report.h"
@@ -114,6 +115,30 @@ bool RunStage(vtkAlgorithm* stage, const std::string& name, bool showProgress, R
   return true;
 }
 
+// Writes every -o file (the extension picks the format) and the --surfaces file; the solver
+// formats and the surfaces share one tagged mesh, the outside being the first background label.
+bool WriteOutputs(vtkUnstructuredGrid* mesh, const CommandLineOptions& options, std::string& error)
+{
+  cbc3d::TaggedMesh tagged;
+  bool taggedReady = false;
+  auto tag = [&]() {
+    taggedReady = taggedReady || MakeTaggedMesh(mesh, options.BackgroundLabels.front(), tagged, error);
+    return taggedReady;
+  };
+  for (const std::string& output : options.Outputs)
+  {
+    const std::string extension = FileExtension(output);
+    const bool ok = extension == ".vtu" || extension == ".vtk"
+      ? WriteMeshFile(mesh, output, error)
+      : tag() && WriteExportFile(tagged, output, options.MshVersion == "2.2", error);
+    if (!ok)
+    {
+      return false;
+    }
+  }
+  return options.SurfacesPath.empty() || (tag() && WriteSurfaceFile(tagged, options.SurfacesPath, error));
+}
+
 int Run(int argc, char* argv[])
 {
   CommandLineOptions options;
@@ -138,10 +163,15 @@ int Run(int argc, char* argv[])
   vtkOutputWindow::SetInstance(silentWindow);
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
   // Find out now, not after a long run, that the output cannot be written.
-  if (!CanWriteBeside(options.Output, error) ||
-    (!options.ReportPath.empty() && !CanWriteBeside(options.ReportPath, error)))
+  std::vector<std::string> written = options.Outputs;
+  written.push_back(options.ReportPath);
+  written.push_back(options.SurfacesPath);
+  for (const std::string& path : written)
   {
-    return Fail(error);
+    if (!path.empty() && !CanWriteBeside(path, error))
+    {
+      return Fail(error);
+    }
   }
 
   const bool showProgress = !options.Quiet && isatty(fileno(stderr));
@@ -222,7 +252,7 @@ int Run(int argc, char* argv[])
   }
 
   Stopwatch writeClock;
-  if (!WriteMeshFile(mesh, options.Output, error))
+  if (!WriteOutputs(mesh, options, error))
   {
     return Fail(error);
   }
