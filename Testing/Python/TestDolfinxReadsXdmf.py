@@ -3,8 +3,8 @@
 # the .vtu with numpy (export_expectations.py): the tets, the tets and the volume per tissue
 # (integrated by dolfinx over each cell tag), the triangles and the area per surface (each facet
 # tag, id as documented: boundaries by tissue, then interfaces). It then solves linear
-# elasticity (E = 3000 Pa, nu = 0.45, gravity) with the displacement fixed on the facets tagged
-# boundary_1, the outer surface: relative residual ||A u - b|| / ||b|| < 1e-8, zero displacement
+# elasticity (elasticity.py: E = 3000 Pa, nu = 0.45, gravity) with the displacement fixed on
+# the facets tagged boundary_1, the outer surface: relative residual ||A u - b|| / ||b|| < 1e-8, zero displacement
 # on the tagged facets and a non-zero one inside. Skips (77) without dolfinx.
 import os
 import sys
@@ -16,56 +16,16 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cbc3d_testing import Checks  # noqa: E402
 import export_expectations as ex  # noqa: E402
 
-try:
-    import dolfinx  # noqa: F401
-except ImportError:
-    # Debian puts dolfinx under PETSc's tree; its .pth file serves Debian's python3 only.
-    sys.path.append(os.path.join(os.environ.get("PETSC_DIR") or "/usr/lib/petsc", "lib/python3/dist-packages"))
-try:
-    import dolfinx  # noqa: F811
-    import dolfinx.fem.petsc
-    import dolfinx.io
-    import ufl
-    from mpi4py import MPI
-    from petsc4py import PETSc
-except ImportError as error:
-    print("SKIP: dolfinx not importable (%s); install python3-dolfinx-real" % error)
-    sys.exit(77)
-import logging  # noqa: E402
+import elasticity  # noqa: E402
 
-logging.disable(logging.INFO)  # FFCx logs each C compile of a form at INFO
-E, NU, RHO_G = 3000.0e-6, 0.45, 1000.0e-12 * 9810.0  # N/mm^2, -, N/mm^3
+elasticity.import_dolfinx()
+from elasticity import MPI, dolfinx, ufl  # noqa: E402
+
 check = Checks()
 
 
 def integrate(form):
     return MPI.COMM_WORLD.allreduce(dolfinx.fem.assemble_scalar(dolfinx.fem.form(form)), op=MPI.SUM)
-
-
-def solve(mesh, facets, fixed_id):
-    """Relative residual, largest displacement on the fixed facets' nodes and overall."""
-    V = dolfinx.fem.VectorFunctionSpace(mesh, ("Lagrange", 1))
-    dofs = dolfinx.fem.locate_dofs_topological(V, 2, facets.find(fixed_id))
-    bc = dolfinx.fem.dirichletbc(np.zeros(3, dtype=PETSc.ScalarType), dofs, V)
-    mu, lam = E / (2 * (1 + NU)), E * NU / ((1 + NU) * (1 - 2 * NU))
-    u, v = ufl.TrialFunction(V), ufl.TestFunction(V)
-    eps = lambda w: ufl.sym(ufl.grad(w))  # noqa: E731
-    a = ufl.inner(2 * mu * eps(u) + lam * ufl.tr(eps(u)) * ufl.Identity(3), eps(v)) * ufl.dx
-    L = ufl.dot(dolfinx.fem.Constant(mesh, PETSc.ScalarType((0.0, 0.0, -RHO_G))), v) * ufl.dx
-    uh = dolfinx.fem.petsc.LinearProblem(a, L, bcs=[bc], petsc_options={
-        "ksp_type": "preonly", "pc_type": "lu", "pc_factor_mat_solver_type": "mumps"}).solve()
-    a_form, L_form = dolfinx.fem.form(a), dolfinx.fem.form(L)
-    A = dolfinx.fem.petsc.assemble_matrix(a_form, bcs=[bc])
-    A.assemble()
-    b = dolfinx.fem.petsc.assemble_vector(L_form)
-    dolfinx.fem.petsc.apply_lifting(b, [a_form], bcs=[[bc]])
-    b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
-    dolfinx.fem.petsc.set_bc(b, [bc])
-    r = A.createVecLeft()
-    A.mult(uh.vector, r)
-    r.axpy(-1.0, b)
-    values = uh.x.array.reshape(-1, 3)
-    return r.norm() / b.norm(), np.abs(values[dofs]).max(), np.linalg.norm(values, axis=1).max()
 
 
 with tempfile.TemporaryDirectory() as work:
@@ -104,7 +64,15 @@ with tempfile.TemporaryDirectory() as work:
               "facet tag %d (%s): %d triangles (expected %d), area %.6f mm^2 (expected %.6f)"
               % (sid, want["names"][pair], tagged, len(faces), area, expected_area))
     fixed_id = want["ids"][(1, ex.OUTSIDE)]
-    residual, on_fixed, largest = solve(mesh, surfaces, fixed_id)
+    fixed = []
+
+    def tagged_facets(V):
+        fixed.append(dolfinx.fem.locate_dofs_topological(V, 2, surfaces.find(fixed_id)))
+        return fixed[0]
+
+    displacement, residual = elasticity.solve(mesh, tagged_facets)
+    on_fixed = np.abs(displacement[fixed[0]]).max()
+    largest = np.linalg.norm(displacement, axis=1).max()
     check(residual < 1e-8, "elasticity, boundary_1 (facet tag %d) fixed: relative residual %.3g (< 1e-8)"
           % (fixed_id, residual))
     check(on_fixed == 0.0 and largest > 0.0, "displacement 0 on the tagged facets, %.3g mm at most inside"
