@@ -1,7 +1,8 @@
 #include "cbc3d/AbaqusWriter.h"
 
+#include "cbc3d/MeshExport.h"
+
 #include <array>
-#include <limits>
 
 namespace cbc3d
 {
@@ -80,11 +81,11 @@ void WriteSurface(const TaggedMesh& mesh, std::size_t s, std::ostream& out)
 
 Status WriteAbaqus(const TaggedMesh& mesh, std::ostream& out)
 {
-  if (mesh.Tets.empty())
+  const Status ready = BeginExport(mesh, out);
+  if (!ready.IsOk())
   {
-    return Status::Error("the mesh has no tetrahedra to write");
+    return ready;
   }
-  out.precision(std::numeric_limits<double>::max_digits10);
   out << "*HEADING\ncbc3d multi-tissue tetrahedral mesh\n";
   WriteNodesAndElements(mesh, out);
   WriteTissueSets(mesh, out);
@@ -92,6 +93,6 @@ Status WriteAbaqus(const TaggedMesh& mesh, std::ostream& out)
   {
     WriteSurface(mesh, s, out);
   }
-  return out ? Status::Ok() : Status::Error("the stream failed while writing the mesh");
+  return EndExport(out);
 }
 } // namespace cbc3d

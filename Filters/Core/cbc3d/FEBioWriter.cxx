@@ -1,6 +1,6 @@
 #include "cbc3d/FEBioWriter.h"
 
-#include <limits>
+#include "cbc3d/MeshExport.h"
 
 namespace cbc3d
 {
@@ -67,11 +67,11 @@ void WriteSurfaces(const TaggedMesh& mesh, std::ostream& out)
 
 Status WriteFEBio(const TaggedMesh& mesh, std::ostream& out)
 {
-  if (mesh.Tets.empty())
+  const Status ready = BeginExport(mesh, out);
+  if (!ready.IsOk())
   {
-    return Status::Error("the mesh has no tetrahedra to write");
+    return ready;
   }
-  out.precision(std::numeric_limits<double>::max_digits10);
   out << "<?xml version=\"1.0\" encoding=\"ISO-8859-1\"?>\n<febio_spec version=\"4.0\">\n"
       << "  <Module type=\"solid\"/>\n";
   WriteMaterials(mesh, out);
@@ -85,6 +85,6 @@ Status WriteFEBio(const TaggedMesh& mesh, std::ostream& out)
     out << "    <SolidDomain name=\"tissue_" << label << "\" mat=\"tissue_" << label << "\"/>\n";
   }
   out << "  </MeshDomains>\n</febio_spec>\n";
-  return out ? Status::Ok() : Status::Error("the stream failed while writing the mesh");
+  return EndExport(out);
 }
 } // namespace cbc3d

@@ -1,6 +1,6 @@
 #include "cbc3d/GmshWriter.h"
 
-#include <limits>
+#include "cbc3d/MeshExport.h"
 
 namespace cbc3d
 {
@@ -145,16 +145,16 @@ void WriteElements22(const TaggedMesh& mesh, std::ostream& out)
 
 Status WriteGmsh(const TaggedMesh& mesh, std::ostream& out, bool version22)
 {
-  if (mesh.Tets.empty())
+  const Status ready = BeginExport(mesh, out);
+  if (!ready.IsOk())
   {
-    return Status::Error("the mesh has no tetrahedra to write");
+    return ready;
   }
   if (mesh.Tissues.front() <= 0)
   {
     return Status::Error("Gmsh needs positive physical tags, but tissue label " +
       std::to_string(mesh.Tissues.front()) + " is not");
   }
-  out.precision(std::numeric_limits<double>::max_digits10);
   out << "$MeshFormat\n" << (version22 ? "2.2" : "4.1") << " 0 8\n$EndMeshFormat\n";
   WritePhysicalNames(mesh, out);
   if (version22)
@@ -168,6 +168,6 @@ Status WriteGmsh(const TaggedMesh& mesh, std::ostream& out, bool version22)
     WriteNodes41(mesh, out);
     WriteElements41(mesh, out);
   }
-  return out ? Status::Ok() : Status::Error("the stream failed while writing the mesh");
+  return EndExport(out);
 }
 } // namespace cbc3d

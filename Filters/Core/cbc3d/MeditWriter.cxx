@@ -1,6 +1,6 @@
 #include "cbc3d/MeditWriter.h"
 
-#include <limits>
+#include "cbc3d/MeshExport.h"
 
 namespace cbc3d
 {
@@ -19,11 +19,11 @@ void WriteRefTable(const TaggedMesh& mesh, std::ostream& out)
 
 Status WriteMedit(const TaggedMesh& mesh, std::ostream& out)
 {
-  if (mesh.Tets.empty())
+  const Status ready = BeginExport(mesh, out);
+  if (!ready.IsOk())
   {
-    return Status::Error("the mesh has no tetrahedra to write");
+    return ready;
   }
-  out.precision(std::numeric_limits<double>::max_digits10);
   out << "MeshVersionFormatted 2\n";
   WriteRefTable(mesh, out);
   out << "Dimension 3\nVertices\n" << mesh.Points.size() << "\n";
@@ -48,6 +48,6 @@ Status WriteMedit(const TaggedMesh& mesh, std::ostream& out)
         << mesh.Labels[t] << "\n";
   }
   out << "End\n";
-  return out ? Status::Ok() : Status::Error("the stream failed while writing the mesh");
+  return EndExport(out);
 }
 } // namespace cbc3d

@@ -6,6 +6,8 @@
 #include "cbc3d/MeditWriter.h"
 #include "cbc3d/XdmfWriter.h"
 
+#include <limits>
+
 namespace cbc3d
 {
 bool IsExportExtension(const std::string& extension)
@@ -17,6 +19,21 @@ bool IsExportExtension(const std::string& extension)
 std::string ExportExtensions()
 {
   return ".msh, .inp, .mesh, .feb, .xdmf";
+}
+
+Status BeginExport(const TaggedMesh& mesh, std::ostream& out)
+{
+  if (mesh.Tets.empty())
+  {
+    return Status::Error("the mesh has no tetrahedra to write");
+  }
+  out.precision(std::numeric_limits<double>::max_digits10);
+  return Status::Ok();
+}
+
+Status EndExport(const std::ostream& out)
+{
+  return out ? Status::Ok() : Status::Error("the stream failed while writing the mesh");
 }
 
 Status WriteExport(

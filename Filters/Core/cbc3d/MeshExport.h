@@ -16,6 +16,13 @@ bool IsExportExtension(const std::string& extension);
 /// The extensions above, for messages: ".msh, .inp, .mesh, .feb, .xdmf".
 std::string ExportExtensions();
 
+/// What every writer does first: an error for a mesh with no tets, else full double precision
+/// on `out` (every coordinate read back exactly).
+Status BeginExport(const TaggedMesh& mesh, std::ostream& out);
+
+/// What every writer returns: an error if the stream failed.
+Status EndExport(const std::ostream& out);
+
 /// Writes the mesh in the format of `extension` (lower case, with its dot).
 Status WriteExport(
   const TaggedMesh& mesh, const std::string& extension, std::ostream& out, bool gmsh22 = false);

@@ -1,6 +1,6 @@
 #include "cbc3d/XdmfWriter.h"
 
-#include <limits>
+#include "cbc3d/MeshExport.h"
 
 namespace cbc3d
 {
@@ -78,11 +78,11 @@ void WriteFacetTags(const TaggedMesh& mesh, std::ostream& out)
 
 Status WriteXdmf(const TaggedMesh& mesh, std::ostream& out)
 {
-  if (mesh.Tets.empty())
+  const Status ready = BeginExport(mesh, out);
+  if (!ready.IsOk())
   {
-    return Status::Error("the mesh has no tetrahedra to write");
+    return ready;
   }
-  out.precision(std::numeric_limits<double>::max_digits10);
   out << "<?xml version=\"1.0\"?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
       << "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n  <Domain>\n";
   WriteMeshGrid(mesh, out);
@@ -92,6 +92,6 @@ Status WriteXdmf(const TaggedMesh& mesh, std::ostream& out)
     WriteFacetTags(mesh, out);
   }
   out << "  </Domain>\n</Xdmf>\n";
-  return out ? Status::Ok() : Status::Error("the stream failed while writing the mesh");
+  return EndExport(out);
 }
 } // namespace cbc3d
