@@ -2,23 +2,19 @@
 
 #include "CommandLine.h"
 #include "ErrorCapture.h"
-#include "MeshFileWriter.h"
 #include "vtkCBC3DConvert.h"
 
-#include "cbc3d/MeshExport.h"
+#include "cbc3d/AtomicFile.h"
 
+#include <vtkCellData.h>
 #include <vtkNew.h>
 #include <vtkOBJWriter.h>
 #include <vtkPolyData.h>
-#include <vtkCellData.h>
+#include <vtkSTLWriter.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkUnstructuredGridWriter.h>
-#include <vtkSTLWriter.h>
 #include <vtkXMLPolyDataWriter.h>
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 #include <functional>
 
 bool MakeTaggedMesh(
@@ -32,28 +28,6 @@ bool MakeTaggedMesh(
   const cbc3d::Status status = cbc3d::BuildTaggedMesh(tets, outside, out);
   error = status.GetMessage();
   return status.IsOk();
-}
-
-bool WriteExportFile(
-  const cbc3d::TaggedMesh& mesh, const std::string& path, bool gmsh22, std::string& error)
-{
-  return WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
-    std::ofstream out(temporary, std::ios::binary);
-    if (!out)
-    {
-      message = "cannot write '" + path + "': " + std::strerror(errno);
-      return false;
-    }
-    const cbc3d::Status status = cbc3d::WriteExport(mesh, FileExtension(path), out, gmsh22);
-    out.close();
-    if (!status.IsOk() || !out)
-    {
-      message = "cannot write '" + path + "': " +
-        (status.IsOk() ? std::string(std::strerror(errno)) : status.GetMessage());
-      return false;
-    }
-    return true;
-  });
 }
 
 namespace
@@ -111,7 +85,7 @@ bool WriteSurfaceFile(const cbc3d::TaggedMesh& mesh, const std::string& path, st
 {
   vtkNew<vtkPolyData> surfaces;
   vtkCBC3DConvert::ToPolyData(mesh, surfaces);
-  return WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
+  return cbc3d::WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
     vtkNew<ErrorCapture> capture;
     const int ok = WriteSurfaces(surfaces, FileExtension(path), temporary, capture);
     if (!ok || !capture->Error.empty())

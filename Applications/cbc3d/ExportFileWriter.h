@@ -12,11 +12,6 @@ class vtkUnstructuredGrid;
 bool MakeTaggedMesh(
   vtkUnstructuredGrid* mesh, int outside, cbc3d::TaggedMesh& out, std::string& error);
 
-/// Writes a solver format (.msh, .inp, .mesh, .feb, .xdmf; cbc3d/MeshExport.h), whole or not at
-/// all.
-bool WriteExportFile(
-  const cbc3d::TaggedMesh& mesh, const std::string& path, bool gmsh22, std::string& error);
-
 /// Writes the boundary and interface triangles with their `BoundaryLabels` and `SurfaceId` cell
 /// arrays (.vtp: VTK XML, inline binary; .vtk: legacy 4.2, binary), or their geometry alone
 /// (.stl binary, .obj, which have no cell arrays), whole or not at all.

@@ -1,7 +1,6 @@
 #ifndef cbc3d_MeshFileWriter_h
 #define cbc3d_MeshFileWriter_h
 
-#include <functional>
 #include <string>
 
 class vtkUnstructuredGrid;
@@ -13,11 +12,6 @@ bool WriteMeshFile(vtkUnstructuredGrid* mesh, const std::string& path, std::stri
 
 /// Checks that the folder of `path` exists and is writable, with a one-line message if not.
 bool CanWriteBeside(const std::string& path, std::string& error);
-
-/// Runs `write(temporary, error)` on a temporary name beside `path` and renames the file into
-/// place when it succeeds, so that `path` appears whole or not at all.
-bool WriteAtomically(const std::string& path, std::string& error,
-  const std::function<bool(const std::string&, std::string&)>& write);
 
 /// Writes text the same all-or-nothing way.
 bool WriteTextFile(const std::string& text, const std::string& path, std::string& error);

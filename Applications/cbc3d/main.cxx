@@ -13,6 +13,8 @@
 #include "vtkCBC3DMeshQuality.h"
 #include "vtkCBC3DRefinement.h"
 
+#include "cbc3d/MeshExport.h"
+
 #include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>
 #include <vtkDataArray.h>
@@ -115,6 +117,14 @@ bool RunStage(vtkAlgorithm* stage, const std::string& name, bool showProgress, R
   return true;
 }
 
+bool WriteExport(
+  const cbc3d::TaggedMesh& tagged, const std::string& path, bool gmsh22, std::string& error)
+{
+  const cbc3d::Status status = cbc3d::WriteExportFile(tagged, path, gmsh22);
+  error = status.GetMessage();
+  return status.IsOk();
+}
+
 // Writes every -o file (the extension picks the format) and the --surfaces file; the solver
 // formats and the surfaces share one tagged mesh, the outside being the first background label.
 bool WriteOutputs(vtkUnstructuredGrid* mesh, const CommandLineOptions& options, std::string& error)
@@ -130,7 +140,7 @@ bool WriteOutputs(vtkUnstructuredGrid* mesh, const CommandLineOptions& options, 
     const std::string extension = FileExtension(output);
     const bool ok = extension == ".vtu" || extension == ".vtk"
       ? WriteMeshFile(mesh, output, error)
-      : tag() && WriteExportFile(tagged, output, options.MshVersion == "2.2", error);
+      : tag() && WriteExport(tagged, output, options.MshVersion == "2.2", error);
     if (!ok)
     {
       return false;

@@ -6,6 +6,13 @@
 #include "cbc3d/MeditWriter.h"
 #include "cbc3d/XdmfWriter.h"
 
+#include "cbc3d/AtomicFile.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
 #include <limits>
 
 namespace cbc3d
@@ -50,5 +57,43 @@ Status WriteExport(
   if (extension == ".xdmf")
     return WriteXdmf(mesh, out);
   return Status::Error("no solver format for the extension '" + extension + "'");
+}
+
+std::string LowerCaseExtension(const std::string& path)
+{
+  const std::size_t slash = path.find_last_of('/');
+  const std::size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+  {
+    return "";
+  }
+  std::string extension = path.substr(dot);
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+Status WriteExportFile(const TaggedMesh& mesh, const std::string& path, bool gmsh22)
+{
+  std::string error;
+  const bool written =
+    WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
+      std::ofstream out(temporary, std::ios::binary);
+      if (!out)
+      {
+        message = "cannot write '" + path + "': " + std::strerror(errno);
+        return false;
+      }
+      const Status status = WriteExport(mesh, LowerCaseExtension(path), out, gmsh22);
+      out.close();
+      if (!status.IsOk() || !out)
+      {
+        message = "cannot write '" + path + "': " +
+          (status.IsOk() ? std::string(std::strerror(errno)) : status.GetMessage());
+        return false;
+      }
+      return true;
+    });
+  return written ? Status::Ok() : Status::Error(error);
 }
 } // namespace cbc3d

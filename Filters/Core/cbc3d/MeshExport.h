@@ -26,6 +26,11 @@ Status EndExport(const std::ostream& out);
 /// Writes the mesh in the format of `extension` (lower case, with its dot).
 Status WriteExport(
   const TaggedMesh& mesh, const std::string& extension, std::ostream& out, bool gmsh22 = false);
+/// The lower-cased extension of a file name with its dot (".msh"), "" if none.
+std::string LowerCaseExtension(const std::string& path);
+
+/// Writes the file `path` in the format of its extension, whole or not at all (AtomicFile.h).
+Status WriteExportFile(const TaggedMesh& mesh, const std::string& path, bool gmsh22 = false);
 } // namespace cbc3d
 
 #endif
