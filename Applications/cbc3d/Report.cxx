@@ -283,7 +283,7 @@ std::string FormatJson(const RunReport& report)
   doc["outputs"] = o.Outputs;
   if (!o.SurfacesPath.empty())
   {
-    doc["surfaces"] = o.SurfacesPath;
+    doc["surfaces_file"] = o.SurfacesPath;
   }
   doc["parameters"] = { { "bcc_size_mm", report.BCCSizeUsed }, { "fidelity", o.Fidelity },
     { "boundary_distance_mm", o.BoundaryDistance },
@@ -322,5 +322,15 @@ std::string FormatJson(const RunReport& report)
     AddTopology(tissues[std::to_string(label)], figures);
   }
   doc["tissues"] = tissues;
+  if (!report.Surfaces.empty())
+  {
+    nlohmann::json surfaces = nlohmann::json::object();
+    for (const SurfaceFigures& surface : report.Surfaces)
+    {
+      surfaces[std::to_string(surface.Id)] = { { "name", surface.Name },
+        { "labels", surface.Labels }, { "triangles", surface.Triangles } };
+    }
+    doc["surfaces"] = surfaces;
+  }
   return doc.dump(2) + "\n";
 }

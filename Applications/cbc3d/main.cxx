@@ -127,12 +127,28 @@ bool WriteExport(
 
 // Writes every -o file (the extension picks the format) and the --surfaces file; the solver
 // formats and the surfaces share one tagged mesh, the outside being the first background label.
-bool WriteOutputs(vtkUnstructuredGrid* mesh, const CommandLineOptions& options, std::string& error)
+// The surfaces' ids, names and sizes, for the report: the key to Medit's refs and XDMF's tags.
+void ReportSurfaces(const cbc3d::TaggedMesh& tagged, RunReport& report)
+{
+  for (std::size_t s = 0; s < tagged.Surfaces.size(); ++s)
+  {
+    const cbc3d::TaggedSurface& surface = tagged.Surfaces[s];
+    report.Surfaces.push_back({ surface.Id, surface.Name, { surface.Sides[0], surface.Sides[1] },
+      static_cast<long long>(tagged.SurfaceStart[s + 1] - tagged.SurfaceStart[s]) });
+  }
+}
+
+bool WriteOutputs(
+  vtkUnstructuredGrid* mesh, const CommandLineOptions& options, RunReport& report, std::string& error)
 {
   cbc3d::TaggedMesh tagged;
   bool taggedReady = false;
   auto tag = [&]() {
-    taggedReady = taggedReady || MakeTaggedMesh(mesh, options.BackgroundLabels.front(), tagged, error);
+    if (!taggedReady && MakeTaggedMesh(mesh, options.BackgroundLabels.front(), tagged, error))
+    {
+      taggedReady = true;
+      ReportSurfaces(tagged, report);
+    }
     return taggedReady;
   };
   for (const std::string& output : options.Outputs)
@@ -262,7 +278,7 @@ int Run(int argc, char* argv[])
   }
 
   Stopwatch writeClock;
-  if (!WriteOutputs(mesh, options, error))
+  if (!WriteOutputs(mesh, options, report, error))
   {
     return Fail(error);
   }

@@ -5,6 +5,7 @@
 # boundary and interface triangles per label pair with their names or documented ids, each
 # oriented out of the tet behind it, and every tet positively oriented. The .feb is parsed as
 # XML with the same counts. Skips (77) without meshio.
+import json
 import os
 import sys
 import tempfile
@@ -58,12 +59,18 @@ def check_triangles(name, triangles, pair_of_row):
 
 with tempfile.TemporaryDirectory() as work:
     outputs = ["mesh.msh", "mesh.inp", "mesh.mesh", "mesh.feb"]
-    points, tets, labels = ex.mesh_phantom(work, outputs, ["--surfaces", os.path.join(work, "surfaces.vtk")])
+    report = os.path.join(work, "report.json")
+    points, tets, labels = ex.mesh_phantom(work, outputs, ["--surfaces", os.path.join(work, "surfaces.vtk"),
+                                                           "--report", report])
     ex.mesh_phantom(work, ["mesh22.msh"], ["--msh-version", "2.2"])
     want = ex.expected(points, tets, labels)
     check(len(want["tissues"]) == 3 and len(want["pairs"]) >= 3,
           "the phantom has 3 tissues and %d surfaces: %s" % (len(want["pairs"]), sorted(want["names"].values())))
     pair_of_id = {i: p for p, i in want["ids"].items()}
+    listed = {int(k): (v["name"], tuple(v["labels"]), v["triangles"])
+              for k, v in json.load(open(report))["surfaces"].items()}
+    check(listed == {want["ids"][p]: (want["names"][p], p, len(f)) for p, f in want["pairs"].items()},
+          "the report lists every surface id with its name, labels and triangles: %s" % listed)
 
     for msh in ("mesh.msh", "mesh22.msh"):
         mesh = meshio.read(os.path.join(work, msh))
