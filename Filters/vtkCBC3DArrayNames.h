@@ -8,6 +8,11 @@
  * - `MinDihedralAngle`, `MaxDihedralAngle` (vtkDoubleArray, degrees): per tet.
  * - `RefinementLevel` (vtkUnsignedCharArray): red splits between the lattice and the tet.
  *
+ * Surface cell data (the tissue surfaces, `cbc3d --surfaces`): `BoundaryLabels` (vtkIntArray, 2
+ * components: the tissue behind each triangle, then the label its normal points into: the
+ * higher label of an interface, or the outside label on the mesh boundary) and `SurfaceId`
+ * (vtkIntArray: 1, 2, ... for the boundaries in ascending label, then the interfaces).
+ *
  * Field data (vtkCBC3DBCCLattice): `LatticeEdgeLength` (vtkDoubleArray, mm, 1 value), the
  * lattice cube edge used (the automatic choice when EdgeLength is 0).
  *
@@ -43,6 +48,8 @@
 namespace vtkCBC3DArrayNames
 {
 constexpr const char* Label = "Label";
+constexpr const char* BoundaryLabels = "BoundaryLabels";
+constexpr const char* SurfaceId = "SurfaceId";
 constexpr const char* MinDihedralAngle = "MinDihedralAngle";
 constexpr const char* MaxDihedralAngle = "MaxDihedralAngle";
 constexpr const char* LatticeEdgeLength = "LatticeEdgeLength";

@@ -15,6 +15,7 @@
 #include <vtkMatrix3x3.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
+#include <vtkPolyData.h>
 #include <vtkPoints.h>
 #include <vtkUnstructuredGrid.h>
 
@@ -205,6 +206,45 @@ void ToUnstructuredGrid(const cbc3d::TetMesh& mesh, vtkUnstructuredGrid* out)
   out->SetCells(VTK_TETRA, cells);
   out->GetCellData()->AddArray(labels);
   out->GetCellData()->SetActiveScalars(vtkCBC3DArrayNames::Label);
+}
+
+void ToPolyData(const cbc3d::TaggedMesh& mesh, vtkPolyData* out)
+{
+  // Only the points the triangles use, renumbered in first-use order.
+  std::vector<vtkIdType> newId(mesh.Points.size(), -1);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  vtkNew<vtkCellArray> triangles;
+  vtkNew<vtkIntArray> sides;
+  sides->SetName(vtkCBC3DArrayNames::BoundaryLabels);
+  sides->SetNumberOfComponents(2);
+  sides->SetNumberOfTuples(static_cast<vtkIdType>(mesh.Triangles.size()));
+  vtkNew<vtkIntArray> surfaceIds;
+  surfaceIds->SetName(vtkCBC3DArrayNames::SurfaceId);
+  surfaceIds->SetNumberOfValues(static_cast<vtkIdType>(mesh.Triangles.size()));
+  for (std::size_t s = 0; s < mesh.Surfaces.size(); ++s)
+  {
+    for (std::size_t t = mesh.SurfaceStart[s]; t < mesh.SurfaceStart[s + 1]; ++t)
+    {
+      vtkIdType ids[3];
+      for (int k = 0; k < 3; ++k)
+      {
+        const cbc3d::PointId p = mesh.Triangles[t].Points[k];
+        if (newId[p] < 0)
+          newId[p] = points->InsertNextPoint(mesh.Points[p].data());
+        ids[k] = newId[p];
+      }
+      triangles->InsertNextCell(3, ids);
+      sides->SetTypedComponent(static_cast<vtkIdType>(t), 0, mesh.Triangles[t].Sides[0]);
+      sides->SetTypedComponent(static_cast<vtkIdType>(t), 1, mesh.Triangles[t].Sides[1]);
+      surfaceIds->SetValue(static_cast<vtkIdType>(t), mesh.Surfaces[s].Id);
+    }
+  }
+  out->Initialize();
+  out->SetPoints(points);
+  out->SetPolys(triangles);
+  out->GetCellData()->AddArray(sides);
+  out->GetCellData()->AddArray(surfaceIds);
 }
 
 bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, cbc3d::TetMesh& out, std::string& error)

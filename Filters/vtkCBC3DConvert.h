@@ -10,6 +10,7 @@
 
 #include "cbc3d/LabelImage.h"
 #include "cbc3d/Progress.h"
+#include "cbc3d/TaggedMesh.h"
 #include "cbc3d/TetMesh.h"
 
 #include <string>
@@ -19,6 +20,7 @@ class vtkAlgorithm;
 class vtkDataArray;
 class vtkImageData;
 class vtkInformation;
+class vtkPolyData;
 class vtkUnstructuredGrid;
 
 namespace vtkCBC3DConvert
@@ -49,6 +51,13 @@ bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, cbc3d::TetMesh& out, std::s
 
 /// Fills `out` with the mesh's points, VTK_TETRA cells and the `Label` cell array.
 void ToUnstructuredGrid(const cbc3d::TetMesh& mesh, vtkUnstructuredGrid* out);
+
+/**
+ * Fills `out` with the tagged mesh's boundary and interface triangles over the points they use:
+ * cell data `BoundaryLabels` (vtkIntArray, 2 components: the label behind each triangle, then
+ * the label its normal points into; TaggedMesh's rule) and `SurfaceId` (TaggedSurface::Id).
+ */
+void ToPolyData(const cbc3d::TaggedMesh& mesh, vtkPolyData* out);
 
 /// A core progress callback that drives the algorithm's progress and reports its abort flag.
 cbc3d::Progress MakeProgress(vtkAlgorithm* algorithm);

@@ -1,5 +1,7 @@
 #include "CommandLine.h"
 
+#include "cbc3d/MeshExport.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -26,11 +28,62 @@ bool ParseInt(const std::string& text, int& value)
   value = static_cast<int>(parsed);
   return true;
 }
+
+// Checks every -o and --surfaces extension and that no file is named twice.
+bool CheckOutputs(const CommandLineOptions& options, std::string& error)
+{
+  std::vector<std::string> paths = options.Outputs;
+  for (const std::string& output : options.Outputs)
+  {
+    const std::string extension = FileExtension(output);
+    if (!IsMeshExtension(extension))
+    {
+      error = "unknown output extension '" + extension + "' for '" + output +
+        "': use .vtu, .vtk, .msh, .inp, .mesh, .feb or .xdmf";
+      return false;
+    }
+  }
+  if (!options.SurfacesPath.empty())
+  {
+    const std::string extension = FileExtension(options.SurfacesPath);
+    if (!IsSurfaceExtension(extension))
+    {
+      error = "unknown surfaces extension '" + extension + "' for '" + options.SurfacesPath +
+        "': use .vtp, .vtk, .stl or .obj";
+      return false;
+    }
+    paths.push_back(options.SurfacesPath);
+  }
+  paths.push_back(options.ReportPath);
+  for (std::size_t i = 0; i < paths.size(); ++i)
+  {
+    for (std::size_t j = i + 1; j < paths.size(); ++j)
+    {
+      if (!paths[i].empty() && paths[i] == paths[j])
+      {
+        error = "the file '" + paths[i] + "' is given twice as an output";
+        return false;
+      }
+    }
+  }
+  return true;
+}
 } // namespace
+
+bool IsMeshExtension(const std::string& extension)
+{
+  return extension == ".vtu" || extension == ".vtk" || cbc3d::IsExportExtension(extension);
+}
+
+bool IsSurfaceExtension(const std::string& extension)
+{
+  return extension == ".vtp" || extension == ".vtk" || extension == ".stl" || extension == ".obj";
+}
 
 std::string UsageText()
 {
-  return R"(usage: cbc3d INPUT -o OUTPUT [--bcc-size MM] [--fidelity F] [--boundary-distance MM]
+  return R"(usage: cbc3d INPUT -o OUTPUT [-o OUTPUT]... [--msh-version 4.1|2.2] [--surfaces FILE]
+             [--bcc-size MM] [--fidelity F] [--boundary-distance MM]
              [--pattern vertex|edge|face|none] [--targets centre|face]
              [--keep-volumes on|off]
              [--iterations N] [--background L]...
@@ -40,8 +93,18 @@ Mesh a 3-D label image into a conforming multi-tissue tetrahedral mesh (CBC3D).
 
   INPUT               label image: .nii .nii.gz .nrrd .nhdr .mha .mhd .vti
                       (NIfTI is placed in its world frame: sform, else qform, RAS mm)
-  -o, --output FILE   mesh: .vtu (VTK XML, binary) or .vtk (legacy 4.2, binary);
-                      written whole or not at all
+  -o, --output FILE   mesh; repeat to write several formats from one run. The
+                      extension picks the format: .vtu (VTK XML, binary), .vtk
+                      (legacy 4.2, binary), .msh (Gmsh 4.1; 2.2 with --msh-version),
+                      .inp (Abaqus), .mesh (Medit), .feb (FEBio 4.0), .xdmf
+                      (FEniCSx/dolfinx). The solver formats name each tissue
+                      tissue_<label>, each boundary boundary_<label> and each
+                      interface interface_<a>_<b> (Documentation/Exporting.md).
+                      Every file is written whole or not at all
+  --msh-version V     Gmsh .msh version: 4.1 (default) or 2.2 (older readers, SOFA)
+  --surfaces FILE     also write the boundary and interface triangles: .vtp or .vtk
+                      (cell arrays BoundaryLabels: the labels on both sides, and
+                      SurfaceId), .stl or .obj (geometry only)
   --bcc-size MM       lattice cube edge in mm (default: 8 x the finest voxel spacing)
   --fidelity F        voxel fidelity target in [0, 1] for refinement (default 0.95;
                       0 = no refinement)
@@ -124,8 +187,24 @@ bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::
     }
     else if (arg == "-o" || arg == "--output")
     {
-      if (!value(options.Output))
+      if (!value(text))
         return false;
+      options.Outputs.push_back(text);
+    }
+    else if (arg == "--surfaces")
+    {
+      if (!value(options.SurfacesPath))
+        return false;
+    }
+    else if (arg == "--msh-version")
+    {
+      if (!value(options.MshVersion))
+        return false;
+      if (options.MshVersion != "4.1" && options.MshVersion != "2.2")
+      {
+        error = "--msh-version must be 4.1 or 2.2, not '" + options.MshVersion + "'";
+        return false;
+      }
     }
     else if (arg == "--report")
     {
@@ -252,17 +331,11 @@ bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::
     return false;
   }
   options.Input = positional[0];
-  if (options.Output.empty())
+  if (options.Outputs.empty())
   {
     error = "no output file given: add -o OUTPUT.vtu";
     return false;
   }
-  const std::string outExt = FileExtension(options.Output);
-  if (outExt != ".vtu" && outExt != ".vtk")
-  {
-    error = "unknown output extension '" + outExt + "' for '" + options.Output +
-      "': use .vtu or .vtk";
-    return false;
-  }
-  return true;
+  options.Output = options.Outputs.front();
+  return CheckOutputs(options, error);
 }

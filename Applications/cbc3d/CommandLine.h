@@ -8,7 +8,10 @@
 struct CommandLineOptions
 {
   std::string Input;
-  std::string Output;
+  std::string Output;                // the first -o (the report's "output")
+  std::vector<std::string> Outputs;  // every -o, in order; the extension picks the format
+  std::string MshVersion = "4.1";    // Gmsh .msh: 4.1 or 2.2
+  std::string SurfacesPath;          // --surfaces: the boundary and interface triangles
   double BCCSize = 0.0;    // mm; 0 = 8 x the finest voxel spacing
   double Fidelity = 0.95;  // 0 = no refinement
   double BoundaryDistance = 0.0; // mm; 0 = 3/8 of the lattice size, negative = none
@@ -29,6 +32,12 @@ bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::
 
 /// The --help text.
 std::string UsageText();
+
+/// Whether an -o extension names a format cbc3d writes.
+bool IsMeshExtension(const std::string& extension);
+
+/// Whether a --surfaces extension names a format cbc3d writes: .vtp, .vtk, .stl, .obj.
+bool IsSurfaceExtension(const std::string& extension);
 
 /// The lower-cased file-name extension with its dot, e.g. ".nii.gz", ".vtu"; "" if none.
 std::string FileExtension(const std::string& path);

@@ -3,6 +3,8 @@
 #include "CommandLine.h"
 #include "ErrorCapture.h"
 
+#include "cbc3d/AtomicFile.h"
+
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
@@ -14,7 +16,6 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <functional>
@@ -22,25 +23,6 @@
 
 namespace
 {
-// Runs `write` on a temporary file beside `path` and renames it into place on success.
-bool WriteAtomically(const std::string& path, std::string& error,
-  const std::function<bool(const std::string&, std::string&)>& write)
-{
-  const std::string temporary = path + ".part-" + std::to_string(getpid());
-  if (!write(temporary, error))
-  {
-    std::remove(temporary.c_str());
-    return false;
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0)
-  {
-    error = "cannot write '" + path + "': " + std::strerror(errno);
-    std::remove(temporary.c_str());
-    return false;
-  }
-  return true;
-}
-
 bool CanCreate(const std::string& path, std::string& error)
 {
   std::ofstream probe(path, std::ios::binary);
@@ -83,7 +65,7 @@ vtkSmartPointer<vtkUnstructuredGrid> ForMeshio(vtkUnstructuredGrid* mesh, bool l
 bool WriteMeshFile(vtkUnstructuredGrid* input, const std::string& path, std::string& error)
 {
   const vtkSmartPointer<vtkUnstructuredGrid> mesh = ForMeshio(input, FileExtension(path) == ".vtk");
-  return WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
+  return cbc3d::WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
     if (!CanCreate(temporary, message))
     {
       message = "cannot write '" + path + "': " + message;
@@ -137,7 +119,7 @@ bool CanWriteBeside(const std::string& path, std::string& error)
 
 bool WriteTextFile(const std::string& text, const std::string& path, std::string& error)
 {
-  return WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
+  return cbc3d::WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
     std::ofstream out(temporary, std::ios::binary);
     if (!out || !(out << text) || !(out.flush()))
     {

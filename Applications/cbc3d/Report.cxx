@@ -221,7 +221,16 @@ bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
 std::string FormatSummary(const RunReport& report)
 {
   std::ostringstream out;
-  out << report.Options.Input << " -> " << report.Options.Output << "\n";
+  out << report.Options.Input << " ->";
+  for (const std::string& output : report.Options.Outputs)
+  {
+    out << " " << output;
+  }
+  if (!report.Options.SurfacesPath.empty())
+  {
+    out << " (surfaces " << report.Options.SurfacesPath << ")";
+  }
+  out << "\n";
   out << "  lattice size " << Fixed(report.BCCSizeUsed, 3) << " mm\n";
   out << "  tetrahedra " << report.Overall.Tets << ", points " << report.Points
       << ", inverted " << report.Overall.Inverted << "\n";
@@ -271,6 +280,11 @@ std::string FormatJson(const RunReport& report)
   nlohmann::json doc;
   doc["input"] = o.Input;
   doc["output"] = o.Output;
+  doc["outputs"] = o.Outputs;
+  if (!o.SurfacesPath.empty())
+  {
+    doc["surfaces_file"] = o.SurfacesPath;
+  }
   doc["parameters"] = { { "bcc_size_mm", report.BCCSizeUsed }, { "fidelity", o.Fidelity },
     { "boundary_distance_mm", o.BoundaryDistance },
     { "pattern", o.Pattern }, { "targets", o.Targets }, { "keep_volumes", o.KeepVolumes }, { "iterations", o.Iterations },
@@ -308,5 +322,15 @@ std::string FormatJson(const RunReport& report)
     AddTopology(tissues[std::to_string(label)], figures);
   }
   doc["tissues"] = tissues;
+  if (!report.Surfaces.empty())
+  {
+    nlohmann::json surfaces = nlohmann::json::object();
+    for (const SurfaceFigures& surface : report.Surfaces)
+    {
+      surfaces[std::to_string(surface.Id)] = { { "name", surface.Name },
+        { "labels", surface.Labels }, { "triangles", surface.Triangles } };
+    }
+    doc["surfaces"] = surfaces;
+  }
   return doc.dump(2) + "\n";
 }

@@ -3,6 +3,7 @@
 
 #include "CommandLine.h"
 
+#include <array>
 #include <limits>
 #include <map>
 #include <optional>
@@ -48,6 +49,15 @@ struct TissueFigures
 };
 
 /// What one run of cbc3d measured.
+/// A boundary or interface as the solver formats tag it (cbc3d::TaggedSurface).
+struct SurfaceFigures
+{
+  int Id = 0;
+  std::string Name;
+  std::array<int, 2> Labels = { 0, 0 }; // behind the triangles, in front (the outside label)
+  long long Triangles = 0;
+};
+
 struct RunReport
 {
   CommandLineOptions Options;
@@ -66,6 +76,7 @@ struct RunReport
   std::string DeformationStopReason;
   long long DeformationSources = 0;        // surface and interface vertices
   long long DeformationTargets = 0;        // boundary voxels kept by the pattern
+  std::vector<SurfaceFigures> Surfaces;    // when a solver format or --surfaces was written
 };
 
 /// Takes the figures from a mesh that went through vtkCBC3DMeshQuality (its field data), so

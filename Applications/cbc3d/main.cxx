@@ -2,6 +2,7 @@
 // mesh with vtkCBC3DMeshQuality, and writes the mesh (and a JSON report) all or nothing.
 #include "CommandLine.h"
 #include "ErrorCapture.h"
+#include "ExportFileWriter.h"
 #include "ImageFileReader.h"
 #include "MeshFileWriter.h"
 #include "Report.h"
@@ -11,6 +12,8 @@
 #include "vtkCBC3DDeformation.h"
 #include "vtkCBC3DMeshQuality.h"
 #include "vtkCBC3DRefinement.h"
+
+#include "cbc3d/MeshExport.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>
@@ -114,6 +117,54 @@ bool RunStage(vtkAlgorithm* stage, const std::string& name, bool showProgress, R
   return true;
 }
 
+bool WriteExport(
+  const cbc3d::TaggedMesh& tagged, const std::string& path, bool gmsh22, std::string& error)
+{
+  const cbc3d::Status status = cbc3d::WriteExportFile(tagged, path, gmsh22);
+  error = status.GetMessage();
+  return status.IsOk();
+}
+
+// Writes every -o file (the extension picks the format) and the --surfaces file; the solver
+// formats and the surfaces share one tagged mesh, the outside being the first background label.
+// The surfaces' ids, names and sizes, for the report: the key to Medit's refs and XDMF's tags.
+void ReportSurfaces(const cbc3d::TaggedMesh& tagged, RunReport& report)
+{
+  for (std::size_t s = 0; s < tagged.Surfaces.size(); ++s)
+  {
+    const cbc3d::TaggedSurface& surface = tagged.Surfaces[s];
+    report.Surfaces.push_back({ surface.Id, surface.Name, { surface.Sides[0], surface.Sides[1] },
+      static_cast<long long>(tagged.SurfaceStart[s + 1] - tagged.SurfaceStart[s]) });
+  }
+}
+
+bool WriteOutputs(
+  vtkUnstructuredGrid* mesh, const CommandLineOptions& options, RunReport& report, std::string& error)
+{
+  cbc3d::TaggedMesh tagged;
+  bool taggedReady = false;
+  auto tag = [&]() {
+    if (!taggedReady && MakeTaggedMesh(mesh, options.BackgroundLabels.front(), tagged, error))
+    {
+      taggedReady = true;
+      ReportSurfaces(tagged, report);
+    }
+    return taggedReady;
+  };
+  for (const std::string& output : options.Outputs)
+  {
+    const std::string extension = FileExtension(output);
+    const bool ok = extension == ".vtu" || extension == ".vtk"
+      ? WriteMeshFile(mesh, output, error)
+      : tag() && WriteExport(tagged, output, options.MshVersion == "2.2", error);
+    if (!ok)
+    {
+      return false;
+    }
+  }
+  return options.SurfacesPath.empty() || (tag() && WriteSurfaceFile(tagged, options.SurfacesPath, error));
+}
+
 int Run(int argc, char* argv[])
 {
   CommandLineOptions options;
@@ -138,10 +189,15 @@ int Run(int argc, char* argv[])
   vtkOutputWindow::SetInstance(silentWindow);
   vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
   // Find out now, not after a long run, that the output cannot be written.
-  if (!CanWriteBeside(options.Output, error) ||
-    (!options.ReportPath.empty() && !CanWriteBeside(options.ReportPath, error)))
+  std::vector<std::string> written = options.Outputs;
+  written.push_back(options.ReportPath);
+  written.push_back(options.SurfacesPath);
+  for (const std::string& path : written)
   {
-    return Fail(error);
+    if (!path.empty() && !CanWriteBeside(path, error))
+    {
+      return Fail(error);
+    }
   }
 
   const bool showProgress = !options.Quiet && isatty(fileno(stderr));
@@ -222,7 +278,7 @@ int Run(int argc, char* argv[])
   }
 
   Stopwatch writeClock;
-  if (!WriteMeshFile(mesh, options.Output, error))
+  if (!WriteOutputs(mesh, options, report, error))
   {
     return Fail(error);
   }

@@ -1,0 +1,99 @@
+#include "cbc3d/MeshExport.h"
+
+#include "cbc3d/AbaqusWriter.h"
+#include "cbc3d/FEBioWriter.h"
+#include "cbc3d/GmshWriter.h"
+#include "cbc3d/MeditWriter.h"
+#include "cbc3d/XdmfWriter.h"
+
+#include "cbc3d/AtomicFile.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <limits>
+
+namespace cbc3d
+{
+bool IsExportExtension(const std::string& extension)
+{
+  return extension == ".msh" || extension == ".inp" || extension == ".mesh" ||
+    extension == ".feb" || extension == ".xdmf";
+}
+
+std::string ExportExtensions()
+{
+  return ".msh, .inp, .mesh, .feb, .xdmf";
+}
+
+Status BeginExport(const TaggedMesh& mesh, std::ostream& out)
+{
+  if (mesh.Tets.empty())
+  {
+    return Status::Error("the mesh has no tetrahedra to write");
+  }
+  out.precision(std::numeric_limits<double>::max_digits10);
+  return Status::Ok();
+}
+
+Status EndExport(const std::ostream& out)
+{
+  return out ? Status::Ok() : Status::Error("the stream failed while writing the mesh");
+}
+
+Status WriteExport(
+  const TaggedMesh& mesh, const std::string& extension, std::ostream& out, bool gmsh22)
+{
+  if (extension == ".msh")
+    return WriteGmsh(mesh, out, gmsh22);
+  if (extension == ".inp")
+    return WriteAbaqus(mesh, out);
+  if (extension == ".mesh")
+    return WriteMedit(mesh, out);
+  if (extension == ".feb")
+    return WriteFEBio(mesh, out);
+  if (extension == ".xdmf")
+    return WriteXdmf(mesh, out);
+  return Status::Error("no solver format for the extension '" + extension + "'");
+}
+
+std::string LowerCaseExtension(const std::string& path)
+{
+  const std::size_t slash = path.find_last_of('/');
+  const std::size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
+  {
+    return "";
+  }
+  std::string extension = path.substr(dot);
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+Status WriteExportFile(const TaggedMesh& mesh, const std::string& path, bool gmsh22)
+{
+  std::string error;
+  const bool written =
+    WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
+      std::ofstream out(temporary, std::ios::binary);
+      if (!out)
+      {
+        message = "cannot write '" + path + "': " + std::strerror(errno);
+        return false;
+      }
+      const Status status = WriteExport(mesh, LowerCaseExtension(path), out, gmsh22);
+      out.close();
+      if (!status.IsOk() || !out)
+      {
+        message = "cannot write '" + path + "': " +
+          (status.IsOk() ? std::string(std::strerror(errno)) : status.GetMessage());
+        return false;
+      }
+      return true;
+    });
+  return written ? Status::Ok() : Status::Error(error);
+}
+} // namespace cbc3d

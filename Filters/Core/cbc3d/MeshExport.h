@@ -1,0 +1,36 @@
+#ifndef cbc3d_MeshExport_h
+#define cbc3d_MeshExport_h
+
+#include "cbc3d/Status.h"
+#include "cbc3d/TaggedMesh.h"
+
+#include <ostream>
+#include <string>
+
+namespace cbc3d
+{
+/// The solver formats the tagged mesh goes to, chosen by file extension: .msh (Gmsh 4.1, or
+/// 2.2 with `gmsh22`), .inp (Abaqus), .mesh (Medit), .feb (FEBio), .xdmf (dolfinx's XDMF).
+bool IsExportExtension(const std::string& extension);
+
+/// The extensions above, for messages: ".msh, .inp, .mesh, .feb, .xdmf".
+std::string ExportExtensions();
+
+/// What every writer does first: an error for a mesh with no tets, else full double precision
+/// on `out` (every coordinate read back exactly).
+Status BeginExport(const TaggedMesh& mesh, std::ostream& out);
+
+/// What every writer returns: an error if the stream failed.
+Status EndExport(const std::ostream& out);
+
+/// Writes the mesh in the format of `extension` (lower case, with its dot).
+Status WriteExport(
+  const TaggedMesh& mesh, const std::string& extension, std::ostream& out, bool gmsh22 = false);
+/// The lower-cased extension of a file name with its dot (".msh"), "" if none.
+std::string LowerCaseExtension(const std::string& path);
+
+/// Writes the file `path` in the format of its extension, whole or not at all (AtomicFile.h).
+Status WriteExportFile(const TaggedMesh& mesh, const std::string& path, bool gmsh22 = false);
+} // namespace cbc3d
+
+#endif

@@ -1,0 +1,51 @@
+# pvpython: with the CBC3D plugin loaded, File > Save Data (SaveData) writes the solver formats
+# through the "CBC3D Solver Mesh" writer, byte for byte the files cbc3d writes for the same mesh
+# (whose contents TestMeshioReadsExports, TestGmshReadsMsh and TestDolfinxReadsXdmf check), and
+# the "CBC3D Tissue Surfaces" filter gives every boundary and interface triangle with its
+# BoundaryLabels and SurfaceId, counted per label pair with numpy from the mesh.
+import filecmp
+import os
+import subprocess
+import sys
+import tempfile
+
+from paraview.simple import *  # noqa: F401,F403
+from paraview import servermanager
+
+LoadPlugin(os.environ["CBC3D_PLUGIN"], remote=False, ns=globals())
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cbc3d_testing import Checks  # noqa: E402
+import export_expectations as ex  # noqa: E402
+
+import numpy as np  # noqa: E402
+from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
+
+check = Checks()
+formats = ["mesh.msh", "mesh.inp", "mesh.mesh", "mesh.feb", "mesh.xdmf"]
+with tempfile.TemporaryDirectory() as work:
+    points, tets, labels = ex.mesh_phantom(work, formats)
+    ex.mesh_phantom(work, ["mesh22.msh"], ["--msh-version", "2.2"])
+    want = ex.expected(points, tets, labels)
+    mesh = XMLUnstructuredGridReader(FileName=[os.path.join(work, "mesh.vtu")])
+    mesh.UpdatePipeline()
+    for name in formats:
+        saved = os.path.join(work, "saved-" + name)
+        SaveData(saved, proxy=mesh)
+        check(os.path.exists(saved) and filecmp.cmp(saved, os.path.join(work, name), shallow=False),
+              "SaveData %s: the CBC3D writer's file is cbc3d's, byte for byte" % name)
+    saved = os.path.join(work, "saved-mesh22.msh")
+    SaveData(saved, proxy=mesh, Gmsh22=1)
+    check(os.path.exists(saved) and filecmp.cmp(saved, os.path.join(work, "mesh22.msh"), shallow=False),
+          "SaveData .msh with Gmsh22 (the proxy property Gmsh 2.2): cbc3d's --msh-version 2.2 file")
+
+    surfaces = servermanager.Fetch(CBC3DTissueSurfaces(Input=mesh))
+    sides = vtk_to_numpy(surfaces.GetCellData().GetArray("BoundaryLabels"))
+    ids = vtk_to_numpy(surfaces.GetCellData().GetArray("SurfaceId"))
+    for pair, faces in want["pairs"].items():
+        rows = np.all(sides == pair, axis=1)
+        check(rows.sum() == len(faces) and np.all(ids[rows] == want["ids"][pair]),
+              "CBC3D Tissue Surfaces: %s: %d triangles (expected %d), SurfaceId %d"
+              % (want["names"][pair], rows.sum(), len(faces), want["ids"][pair]))
+    check(surfaces.GetNumberOfCells() == sum(len(f) for f in want["pairs"].values()),
+          "CBC3D Tissue Surfaces: %d triangles in all" % surfaces.GetNumberOfCells())
+check.finish()
