@@ -1,6 +1,6 @@
 #include "cbc3d/TissueVolumes.h"
 
-#include "cbc3d/MeshFaces.h"
+#include "cbc3d/TaggedMesh.h"
 
 #include <Eigen/Geometry>
 #include <Eigen/QR>
@@ -27,47 +27,19 @@ TissueVolumeKeeper::TissueVolumeKeeper(
   : Targets(std::move(targets))
   , LargestOffset(largestOffset)
 {
-  std::map<std::pair<std::int32_t, std::int32_t>, int> pairNumber;
-  for (const MeshFace& face : FindMeshFaces(mesh))
+  // The boundary and interface triangles, oriented out of their first side: the exporters'.
+  TaggedMesh tagged;
+  if (!BuildTaggedMesh(mesh, Outside, tagged).IsOk())
   {
-    std::int64_t inner = face.Tets[0];
-    std::int32_t other = Outside;
-    if (face.TetCount == 2)
+    return; // not conforming: ValidateTetMesh's business, not a volume's
+  }
+  for (std::size_t s = 0; s < tagged.Surfaces.size(); ++s)
+  {
+    this->Pairs.emplace_back(tagged.Surfaces[s].Sides[0], tagged.Surfaces[s].Sides[1]);
+    for (std::size_t t = tagged.SurfaceStart[s]; t < tagged.SurfaceStart[s + 1]; ++t)
     {
-      std::int64_t second = face.Tets[1];
-      if (mesh.Labels[inner] == mesh.Labels[second])
-      {
-        continue; // inside a tissue
-      }
-      if (mesh.Labels[second] < mesh.Labels[inner])
-      {
-        std::swap(inner, second);
-      }
-      other = mesh.Labels[second];
+      this->Faces.push_back({ tagged.Triangles[t].Points, int(s) });
     }
-    else if (face.TetCount != 1)
-    {
-      continue; // not conforming: ValidateTetMesh's business, not a volume's
-    }
-    const std::pair<std::int32_t, std::int32_t> pair(mesh.Labels[inner], other);
-    const auto [at, added] = pairNumber.emplace(pair, int(this->Pairs.size()));
-    if (added)
-    {
-      this->Pairs.push_back(pair);
-    }
-    // Orient the face away from its tissue's tet: the tet's fourth vertex lies behind it.
-    std::array<PointId, 3> p = face.Points;
-    PointId apex = -1;
-    for (const PointId q : mesh.Tets[inner])
-    {
-      apex = std::find(p.begin(), p.end(), q) == p.end() ? q : apex;
-    }
-    const auto& x = mesh.Points;
-    if (AreaVector(x[p[0]], x[p[1]], x[p[2]]).dot(x[apex] - x[p[0]]) > 0.0)
-    {
-      std::swap(p[1], p[2]);
-    }
-    this->Faces.push_back({ p, at->second });
   }
 }
 
