@@ -191,13 +191,10 @@ std::map<std::int64_t, std::int32_t> PinComponents(const LabelImage& image,
   }
   return pinned;
 }
-} // namespace
 
-Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params,
-  TetMesh& out, RefinementResult& result, const Progress& progress)
+// The image, the mesh to refine and the parameters' ranges, or an error naming what is wrong.
+Status ValidateInputs(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params)
 {
-  out = TetMesh();
-  result = RefinementResult();
   const Status valid = ValidateLabelImage(image);
   if (!valid.IsOk())
   {
@@ -220,6 +217,208 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   {
     return Status::Error("the mesh to refine has no tets");
   }
+  return Status::Ok();
+}
+
+// Which leaves to split red for fidelity: those whose tets cross the boundary of a tissue below
+// the target, and those holding a tissue component that no tet of its tissue represents yet.
+std::vector<char> MarkForFidelity(const LabelImage& image, const TissueComponents& components,
+  const RefinementParams& params, const LabelledMesh& mesh,
+  const std::map<std::int32_t, TissueFidelity>& fidelity, const std::vector<char>& componentInMesh,
+  std::size_t leaves)
+{
+  auto isFailing = [&](std::int32_t label) {
+    const auto found = fidelity.find(label);
+    return found != fidelity.end() &&
+      (found->second.F1 < params.Fidelity || found->second.F2 < params.Fidelity);
+  };
+  std::vector<char> marked(leaves, 0);
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    const auto& counts = mesh.Counts[t].Counts;
+    if (counts.size() < 2)
+    {
+      continue;
+    }
+    for (const auto& entry : counts)
+    {
+      if (isFailing(entry.first))
+      {
+        marked[mesh.Source[t]] = 1;
+        break;
+      }
+    }
+  }
+  for (std::size_t v = 0; v < image.Labels.size(); ++v)
+  {
+    const std::int32_t component = components.ComponentOfVoxel[v];
+    if (component >= 0 && !componentInMesh[component] &&
+      !IsSmall(components, component, params.MinimumComponentVoxels) && mesh.VoxelOwner[v] >= 0)
+    {
+      marked[mesh.Source[mesh.VoxelOwner[v]]] = 1;
+    }
+  }
+  return marked;
+}
+
+// Where the surface would stay far from the image boundary: a new surface vertex on the
+// longest edge of the face nearest to a far boundary voxel (a green split of the tets around
+// the edge, into `bisect`), or a red split of the leaf where that edge is not one of the leaf's
+// own; and a red split of the tets with a vertex that cannot reach the boundary. Returns
+// whether any split was wanted (at the depth limit or not).
+bool MarkForCoverage(const BoundaryCoverage& coverage, const RedGreenMesh& hierarchy,
+  const LabelledMesh& mesh, double minimumEdge, RefinementResult& result, std::vector<char>& marked,
+  std::vector<std::pair<PointId, PointId>>& bisect)
+{
+  const auto& x = hierarchy.Points();
+  const BoundaryCoverage::Gaps gaps =
+    coverage.Find(x, mesh.Tets, mesh.Labels, result.BoundaryDistance);
+  result.LargestBoundaryGap = gaps.LargestGap;
+  const bool wanted = !gaps.FarFaces.empty() || !gaps.StrandedTets.empty();
+  for (const std::int64_t t : gaps.StrandedTets)
+  {
+    marked[mesh.Source[t]] = 1;
+  }
+  for (const BoundaryCoverage::Face& face : gaps.FarFaces)
+  {
+    int longest = 0;
+    auto length = [&](int e) { return (x[face.Points[e]] - x[face.Points[(e + 1) % 3]]).norm(); };
+    for (int e = 1; e < 3; ++e)
+    {
+      longest = length(e) > length(longest) ? e : longest;
+    }
+    const PointId a = face.Points[longest], b = face.Points[(longest + 1) % 3];
+    const std::int64_t red = mesh.Source[face.Tet];
+    const Tet& corners = hierarchy.Reds()[red].Points;
+    const bool leafEdge = std::count(corners.begin(), corners.end(), a) > 0 &&
+      std::count(corners.begin(), corners.end(), b) > 0;
+    if (!leafEdge)
+    {
+      marked[red] = 1;
+    }
+    else if (length(longest) / 2.0 >= minimumEdge * (1.0 - 1e-9))
+    {
+      bisect.emplace_back(a, b);
+    }
+  }
+  return wanted;
+}
+
+// A component still missing gets the tet holding most of it (PinComponents); then, with
+// SoundLabels: no hinge, no non-manifold surface, no piece the image does not have, and a
+// component the repair lost gets its tet back, pinned, and the repair runs again around it.
+// Returns the fidelity of the labels as they end.
+std::map<std::int32_t, TissueFidelity> KeepComponentsAndMakeSound(const LabelImage& image,
+  const TissueComponents& components, const RefinementParams& params,
+  const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<std::int64_t, 4>>& across,
+  LabelledMesh& mesh, std::vector<char>& componentInMesh, std::int64_t& relabelled)
+{
+  std::map<std::int64_t, std::int32_t> pinned =
+    PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+  std::map<std::int32_t, TissueFidelity> fidelity;
+  bool measured = false; // the fidelity is that of the labels as they are
+  if (params.SoundLabels)
+  {
+    for (int round = 0; round < SoundLabelRounds && !measured; ++round)
+    {
+      relabelled += MakeLabelsSound(image, components, params.MinimumComponentVoxels,
+        points, mesh.Tets, across, mesh.Counts, mesh.VoxelOwner, pinned, NoLabel,
+        mesh.Labels).Relabelled;
+      fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+      const std::size_t before = pinned.size();
+      const auto lost = PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+      pinned.insert(lost.begin(), lost.end());
+      measured = pinned.size() == before;
+    }
+  }
+  if (!measured)
+  {
+    fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+  }
+  return fidelity;
+}
+
+// The tissue tets, their points renumbered, and each one's red level.
+void KeepTissueTets(const LabelImage& image, const RedGreenMesh& hierarchy, const LabelledMesh& mesh,
+  TetMesh& out, RefinementResult& result)
+{
+  std::vector<PointId> newId(hierarchy.Points().size(), -1);
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    const std::int32_t label = mesh.Labels[t];
+    if (label == NoLabel || !image.IsTissue(label))
+    {
+      continue;
+    }
+    Tet tet;
+    for (int v = 0; v < 4; ++v)
+    {
+      PointId& id = newId[mesh.Tets[t][v]];
+      if (id < 0)
+      {
+        id = static_cast<PointId>(out.Points.size());
+        out.Points.push_back(hierarchy.Points()[mesh.Tets[t][v]]);
+      }
+      tet[v] = id;
+    }
+    out.Tets.push_back(tet);
+    out.Labels.push_back(label);
+    const int level = hierarchy.Reds()[mesh.Source[t]].Level;
+    result.Levels.push_back(static_cast<std::uint8_t>(level));
+    result.DeepestLevel = std::max(result.DeepestLevel, level);
+  }
+}
+
+// The check of the boundary distance (0: 3/8 of the lattice's longest edge, recorded in
+// `result`); none where the bound is negative.
+std::unique_ptr<BoundaryCoverage> MakeCoverage(const LabelImage& image, const TissueComponents& components,
+  const RefinementParams& params, const RedGreenMesh& hierarchy, RefinementResult& result)
+{
+  if (params.BoundaryDistance < 0.0)
+  {
+    return nullptr;
+  }
+  double longest = 0.0;
+  for (std::size_t red = 0; red < hierarchy.Reds().size(); ++red)
+  {
+    longest = std::max(longest, hierarchy.LongestEdge(red));
+  }
+  result.BoundaryDistance = params.BoundaryDistance > 0.0 ? params.BoundaryDistance : 0.375 * longest;
+  // Deformation moves a vertex by about an element size: the lattice's shortest edge.
+  return std::make_unique<BoundaryCoverage>(image, components, params.MinimumComponentVoxels,
+    hierarchy.ShortestEdge(0), params.NumberOfThreads);
+}
+
+// Unmarks the marked leaves at the depth limit (a split would make edges shorter than
+// `minimumEdge`) and counts the rest; `anyWanted` becomes true where any leaf was marked.
+std::size_t KeepSplittable(const RedGreenMesh& hierarchy, double minimumEdge, std::vector<char>& marked,
+  bool& anyWanted)
+{
+  std::size_t splits = 0;
+  for (std::size_t red = 0; red < marked.size(); ++red)
+  {
+    if (!marked[red])
+    {
+      continue;
+    }
+    anyWanted = true;
+    marked[red] = hierarchy.ShortestEdge(red) / 2.0 >= minimumEdge * (1.0 - 1e-9);
+    splits += marked[red];
+  }
+  return splits;
+}
+} // namespace
+
+Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params,
+  TetMesh& out, RefinementResult& result, const Progress& progress)
+{
+  out = TetMesh();
+  result = RefinementResult();
+  const Status valid = ValidateInputs(image, lattice, params);
+  if (!valid.IsOk())
+  {
+    return valid;
+  }
   const double minimumEdge = params.MinimumEdgeLength > 0.0 ? params.MinimumEdgeLength
                                                             : std::cbrt(image.Spacing.prod());
   const std::size_t memoryLimit =
@@ -227,19 +426,7 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
 
   const TissueComponents components = FindTissueComponents(image);
   RedGreenMesh hierarchy(lattice);
-  std::unique_ptr<BoundaryCoverage> coverage;
-  if (params.BoundaryDistance >= 0.0)
-  {
-    double longest = 0.0;
-    for (std::size_t red = 0; red < lattice.Tets.size(); ++red)
-    {
-      longest = std::max(longest, hierarchy.LongestEdge(red));
-    }
-    result.BoundaryDistance = params.BoundaryDistance > 0.0 ? params.BoundaryDistance : 0.375 * longest;
-    // Deformation moves a vertex by about an element size: the lattice's shortest edge.
-    coverage = std::make_unique<BoundaryCoverage>(image, components, params.MinimumComponentVoxels,
-      hierarchy.ShortestEdge(0), params.NumberOfThreads);
-  }
+  const std::unique_ptr<BoundaryCoverage> coverage = MakeCoverage(image, components, params, hierarchy, result);
   LabelledMesh mesh;
   std::map<std::int32_t, TissueFidelity> fidelity;
   std::vector<char> componentInMesh;
@@ -261,91 +448,13 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
       break;
     }
 
-    // Which tets to split: those that cross the boundary of a tissue below the target, and
-    // those holding a tissue component that no tet of its tissue represents yet.
-    auto isFailing = [&](std::int32_t label) {
-      const auto found = fidelity.find(label);
-      return found != fidelity.end() &&
-        (found->second.F1 < params.Fidelity || found->second.F2 < params.Fidelity);
-    };
-    std::vector<char> marked(hierarchy.Reds().size(), 0);
-    for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
-    {
-      const auto& counts = mesh.Counts[t].Counts;
-      if (counts.size() < 2)
-      {
-        continue;
-      }
-      for (const auto& entry : counts)
-      {
-        if (isFailing(entry.first))
-        {
-          marked[mesh.Source[t]] = 1;
-          break;
-        }
-      }
-    }
-    for (std::size_t v = 0; v < image.Labels.size(); ++v)
-    {
-      const std::int32_t component = components.ComponentOfVoxel[v];
-      if (component >= 0 && !componentInMesh[component] &&
-        !IsSmall(components, component, params.MinimumComponentVoxels) && mesh.VoxelOwner[v] >= 0)
-      {
-        marked[mesh.Source[mesh.VoxelOwner[v]]] = 1;
-      }
-    }
-    // Where the surface would stay far from the image boundary: a new surface vertex on the
-    // longest edge of the face nearest to a far boundary voxel (a green split of the tets around
-    // the edge), or a red split of the leaf where that edge is not one of the leaf's own; and a
-    // red split of the tets with a vertex that cannot reach the boundary.
+    std::vector<char> marked = MarkForFidelity(image, components, params, mesh, fidelity, componentInMesh,
+      hierarchy.Reds().size());
     std::vector<std::pair<PointId, PointId>> bisect;
-    bool coverageWanted = false;
-    if (coverage)
-    {
-      const auto& x = hierarchy.Points();
-      const BoundaryCoverage::Gaps gaps =
-        coverage->Find(x, mesh.Tets, mesh.Labels, result.BoundaryDistance);
-      result.LargestBoundaryGap = gaps.LargestGap;
-      coverageWanted = !gaps.FarFaces.empty() || !gaps.StrandedTets.empty();
-      for (const std::int64_t t : gaps.StrandedTets)
-      {
-        marked[mesh.Source[t]] = 1;
-      }
-      for (const BoundaryCoverage::Face& face : gaps.FarFaces)
-      {
-        int longest = 0;
-        auto length = [&](int e) { return (x[face.Points[e]] - x[face.Points[(e + 1) % 3]]).norm(); };
-        for (int e = 1; e < 3; ++e)
-        {
-          longest = length(e) > length(longest) ? e : longest;
-        }
-        const PointId a = face.Points[longest], b = face.Points[(longest + 1) % 3];
-        const std::int64_t red = mesh.Source[face.Tet];
-        const Tet& corners = hierarchy.Reds()[red].Points;
-        const bool leafEdge = std::count(corners.begin(), corners.end(), a) > 0 &&
-          std::count(corners.begin(), corners.end(), b) > 0;
-        if (!leafEdge)
-        {
-          marked[red] = 1;
-        }
-        else if (length(longest) / 2.0 >= minimumEdge * (1.0 - 1e-9))
-        {
-          bisect.emplace_back(a, b);
-        }
-      }
-    }
-    std::size_t splits = 0;
+    const bool coverageWanted = coverage &&
+      MarkForCoverage(*coverage, hierarchy, mesh, minimumEdge, result, marked, bisect);
     bool anyWanted = coverageWanted;
-    for (std::size_t red = 0; red < marked.size(); ++red)
-    {
-      if (!marked[red])
-      {
-        continue;
-      }
-      anyWanted = true;
-      marked[red] = hierarchy.ShortestEdge(red) / 2.0 >= minimumEdge * (1.0 - 1e-9);
-      splits += marked[red];
-    }
+    const std::size_t splits = KeepSplittable(hierarchy, minimumEdge, marked, anyWanted);
     if (splits == 0 && bisect.empty())
     {
       result.StopReason = anyWanted ? "the tets left to refine are at the minimum edge length"
@@ -385,56 +494,10 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
     fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
   }
 
-  std::map<std::int64_t, std::int32_t> pinned =
-    PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
-  // No hinge, no non-manifold surface, no piece the image does not have. A component the
-  // repair lost gets its tet back, pinned, and the repair runs again around it.
-  bool measured = false; // the fidelity is that of the labels as they are
-  if (params.SoundLabels)
-  {
-    for (int round = 0; round < SoundLabelRounds && !measured; ++round)
-    {
-      result.Relabelled += MakeLabelsSound(image, components, params.MinimumComponentVoxels,
-        hierarchy.Points(), mesh.Tets, across, mesh.Counts, mesh.VoxelOwner, pinned, NoLabel,
-        mesh.Labels).Relabelled;
-      fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
-      const std::size_t before = pinned.size();
-      const auto lost = PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
-      pinned.insert(lost.begin(), lost.end());
-      measured = pinned.size() == before;
-    }
-  }
-  if (!measured)
-  {
-    fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
-  }
+  fidelity = KeepComponentsAndMakeSound(image, components, params, hierarchy.Points(), across, mesh, componentInMesh,
+    result.Relabelled);
 
-  // Candidate mesh selection: keep the tissue tets, renumber their points.
-  std::vector<PointId> newId(hierarchy.Points().size(), -1);
-  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
-  {
-    const std::int32_t label = mesh.Labels[t];
-    if (label == NoLabel || !image.IsTissue(label))
-    {
-      continue;
-    }
-    Tet tet;
-    for (int v = 0; v < 4; ++v)
-    {
-      PointId& id = newId[mesh.Tets[t][v]];
-      if (id < 0)
-      {
-        id = static_cast<PointId>(out.Points.size());
-        out.Points.push_back(hierarchy.Points()[mesh.Tets[t][v]]);
-      }
-      tet[v] = id;
-    }
-    out.Tets.push_back(tet);
-    out.Labels.push_back(label);
-    const int level = hierarchy.Reds()[mesh.Source[t]].Level;
-    result.Levels.push_back(static_cast<std::uint8_t>(level));
-    result.DeepestLevel = std::max(result.DeepestLevel, level);
-  }
+  KeepTissueTets(image, hierarchy, mesh, out, result);
   for (const auto& entry : fidelity)
   {
     result.Tissues.push_back(entry.second);
