@@ -2,7 +2,10 @@
 # through the "CBC3D Solver Mesh" writer, byte for byte the files cbc3d writes for the same mesh
 # (whose contents TestMeshioReadsExports, TestGmshReadsMsh and TestDolfinxReadsXdmf check), and
 # the "CBC3D Tissue Surfaces" filter gives every boundary and interface triangle with its
-# BoundaryLabels and SurfaceId, counted per label pair with numpy from the mesh.
+# BoundaryLabels and SurfaceId, counted per label pair with numpy from the mesh. ParaView's own
+# Exodus II reader (Sandia's exodus library) reads the .exo's blocks and turns each side set's
+# (element, side) pairs into triangles: they must be the expected faces, oriented out of the tet
+# behind them.
 import filecmp
 import os
 import subprocess
@@ -21,7 +24,7 @@ import numpy as np  # noqa: E402
 from vtkmodules.util.numpy_support import vtk_to_numpy  # noqa: E402
 
 check = Checks()
-formats = ["mesh.msh", "mesh.inp", "mesh.mesh", "mesh.feb", "mesh.xdmf"]
+formats = ["mesh.msh", "mesh.inp", "mesh.mesh", "mesh.feb", "mesh.xdmf", "mesh.exo"]
 with tempfile.TemporaryDirectory() as work:
     points, tets, labels = ex.mesh_phantom(work, formats)
     ex.mesh_phantom(work, ["mesh22.msh"], ["--msh-version", "2.2"])
@@ -48,4 +51,34 @@ with tempfile.TemporaryDirectory() as work:
               % (want["names"][pair], rows.sum(), len(faces), want["ids"][pair]))
     check(surfaces.GetNumberOfCells() == sum(len(f) for f in want["pairs"].values()),
           "CBC3D Tissue Surfaces: %d triangles in all" % surfaces.GetNumberOfCells())
+
+    reader = ExodusIIReader(FileName=[os.path.join(work, "mesh.exo")])
+    reader.UpdatePipelineInformation()
+    reader.ElementBlocks = list(reader.ElementBlocks.Available)
+    reader.SideSetArrayStatus = list(reader.SideSetArrayStatus.Available)
+    reader.UpdatePipeline()
+    data = servermanager.Fetch(reader)
+    parts = {}
+    it = data.NewIterator()
+    it.InitTraversal()
+    while not it.IsDoneWithTraversal():
+        parts[it.GetCurrentMetaData().Get(data.NAME())] = it.GetCurrentDataObject()
+        it.GoToNextItem()
+    check({k: parts[k].GetNumberOfCells() for k in parts if k.startswith("tissue_")}
+          == {"tissue_%d" % k: v for k, v in want["tissues"].items()},
+          "ExodusIIReader: a block per tissue with its tets: %s" % sorted(parts))
+    for pair, faces in want["pairs"].items():
+        part = parts.get(want["names"][pair])
+        if not check(part is not None, "ExodusIIReader: the side set %s" % want["names"][pair]):
+            continue
+        # The reader's points are float32 copies: its GlobalNodeId (1-based) names the .vtu's point.
+        node = vtk_to_numpy(part.GetPointData().GetArray("GlobalNodeId")).astype(np.int64) - 1
+        cells = vtk_to_numpy(part.GetCells().GetConnectivityArray()).reshape(-1, 3)
+        rows = node[cells].tolist()
+        owner = dict(faces)
+        same = sorted(tuple(sorted(r)) for r in rows) == sorted(owner)
+        behind = ex.faces_behind_tets(points, tets, rows, [owner.get(tuple(sorted(r)), 0) for r in rows])
+        check(same and behind == len(rows),
+              "ExodusIIReader: %s: %d triangles (expected %d), the expected faces: %s, %d oriented "
+              "out of the tet behind" % (want["names"][pair], len(rows), len(faces), same, behind))
 check.finish()

@@ -4,7 +4,10 @@
 # (export_expectations.py): the same points, the same tets with the same tissue per tet, the
 # boundary and interface triangles per label pair with their names or documented ids, each
 # oriented out of the tet behind it, and every tet positively oriented. The .feb is parsed as
-# XML with the same counts. Skips (77) without meshio.
+# XML with the same counts. The Exodus II .exo is read by meshio (points, tets, a block per
+# tissue) and its side sets with netCDF4 directly (names, ids, triangles per surface, each
+# (element, side) the face of the tet behind the triangle, oriented out of it). Skips (77)
+# without meshio, and after the other checks without netCDF4.
 import json
 import os
 import sys
@@ -22,6 +25,10 @@ try:
 except ImportError:
     print("SKIP: meshio is not installed (Debian: python3-meshio)")
     sys.exit(77)
+try:
+    import netCDF4  # meshio's Exodus reader needs it too
+except ImportError:
+    netCDF4 = None
 
 check = Checks()
 
@@ -45,6 +52,58 @@ def check_tets(name, mesh, tets, labels, read_labels):
     check((volumes > 0).all(), "%s: every tet positively oriented" % name)
 
 
+# Exodus II's 4-node TETRA sides as 0-based corners, in the spec's outward node order:
+# 1 = (1,2,4), 2 = (2,3,4), 3 = (1,4,3), 4 = (1,3,2).
+EXODUS_SIDES = {1: (0, 1, 3), 2: (1, 2, 3), 3: (0, 3, 2), 4: (0, 2, 1)}
+
+
+def nc_names(nc, variable):
+    value = nc.variables[variable]
+    value.set_auto_mask(False)
+    return [b"".join(row).decode().rstrip("\0") for row in value[:]]
+
+
+def check_exodus(path):
+    """meshio reads the points, the tets and a block per tissue; netCDF4 the side sets."""
+    mesh = meshio.read(path)
+    blocks_exo = [c.data for c in mesh.cells]
+    check([c.type for c in mesh.cells] == ["tetra"] * len(want["tissues"]),
+          "mesh.exo: meshio reads a tet block per tissue: %s" % [c.type for c in mesh.cells])
+    with netCDF4.Dataset(path) as nc:
+        block_names = nc_names(nc, "eb_names")
+        block_ids = nc.variables["eb_prop1"][:].tolist()
+        elem_types = [nc.variables["connect%d" % (k + 1)].elem_type for k in range(len(block_names))]
+        check(block_names == ["tissue_%d" % k for k in want["tissues"]] and block_ids == list(want["tissues"])
+              and elem_types == ["TETRA"] * len(block_names)
+              and [len(nc.dimensions["num_nod_per_el%d" % (k + 1)]) for k in range(len(block_names))]
+              == [4] * len(block_names),
+              "mesh.exo: blocks %s, ids %s, %s" % (block_names, block_ids, sorted(set(elem_types))))
+        block_labels = np.concatenate([np.full(len(b), k) for b, k in zip(blocks_exo, want["tissues"])])
+        check_tets("mesh.exo", mesh, tets, labels, block_labels)
+        elements = np.concatenate(blocks_exo)  # Exodus numbers the elements block after block
+        names = nc_names(nc, "ss_names")
+        ids = nc.variables["ss_prop1"][:].tolist()
+        check(names == [want["names"][p] for p in sorted(want["ids"], key=want["ids"].get)]
+              and ids == sorted(want["ids"].values()),
+              "mesh.exo: a side set per surface in id order: %s, ids %s" % (names, ids))
+        tet_index = {tuple(t): i for i, t in enumerate(np.asarray(tets).tolist())}
+        for k, name in enumerate(names):
+            pair = {n: p for p, n in want["names"].items()}.get(name)
+            if pair is None:
+                continue
+            element = nc.variables["elem_ss%d" % (k + 1)][:] - 1
+            side = nc.variables["side_ss%d" % (k + 1)][:]
+            rows = np.array([elements[e][list(EXODUS_SIDES[int(s)])] for e, s in zip(element, side)])
+            owners = [tet_index.get(tuple(elements[e].tolist()), -1) for e in element]
+            wanted = sorted((tuple(f), t) for f, t in want["pairs"][pair])
+            written = sorted((tuple(sorted(r)), t) for r, t in zip(rows.tolist(), owners))
+            behind = ex.faces_behind_tets(points, tets, rows.tolist(), owners)
+            check(written == wanted and behind == len(rows),
+                  "mesh.exo: %s: %d (element, side) (expected %d), each the face of the tet behind "
+                  "the triangle: %s, %d oriented out of it" % (name, len(rows), len(wanted),
+                                                             written == wanted, behind))
+
+
 def check_triangles(name, triangles, pair_of_row):
     """The triangles of each label pair are the expected faces, each oriented out of its tet."""
     for pair, faces in want["pairs"].items():
@@ -58,7 +117,7 @@ def check_triangles(name, triangles, pair_of_row):
 
 
 with tempfile.TemporaryDirectory() as work:
-    outputs = ["mesh.msh", "mesh.inp", "mesh.mesh", "mesh.feb"]
+    outputs = ["mesh.msh", "mesh.inp", "mesh.mesh", "mesh.feb", "mesh.exo"]
     report = os.path.join(work, "report.json")
     points, tets, labels = ex.mesh_phantom(work, outputs, ["--surfaces", os.path.join(work, "surfaces.vtk"),
                                                            "--report", report])
@@ -122,4 +181,10 @@ with tempfile.TemporaryDirectory() as work:
     materials = {m.get("name") for m in root.findall("Material/material")}
     check(set(domains) == set(blocks_feb) and set(domains.values()) == materials,
           "mesh.feb: a SolidDomain per tissue, each with its placeholder material: %s" % domains)
+
+    if netCDF4 is not None:
+        check_exodus(os.path.join(work, "mesh.exo"))
+if netCDF4 is None and not check.failures:
+    print("SKIP: the .exo checks need netCDF4 (Debian: python3-netcdf4); the other formats passed")
+    sys.exit(77)
 check.finish()

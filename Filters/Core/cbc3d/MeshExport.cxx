@@ -1,6 +1,7 @@
 #include "cbc3d/MeshExport.h"
 
 #include "cbc3d/AbaqusWriter.h"
+#include "cbc3d/ExodusWriter.h"
 #include "cbc3d/FEBioWriter.h"
 #include "cbc3d/GmshWriter.h"
 #include "cbc3d/MeditWriter.h"
@@ -20,12 +21,12 @@ namespace cbc3d
 bool IsExportExtension(const std::string& extension)
 {
   return extension == ".msh" || extension == ".inp" || extension == ".mesh" ||
-    extension == ".feb" || extension == ".xdmf";
+    extension == ".feb" || extension == ".xdmf" || extension == ".exo";
 }
 
 std::string ExportExtensions()
 {
-  return ".msh, .inp, .mesh, .feb, .xdmf";
+  return ".msh, .inp, .mesh, .feb, .xdmf, .exo";
 }
 
 Status BeginExport(const TaggedMesh& mesh, std::ostream& out)
@@ -56,6 +57,8 @@ Status WriteExport(
     return WriteFEBio(mesh, out);
   if (extension == ".xdmf")
     return WriteXdmf(mesh, out);
+  if (extension == ".exo")
+    return Status::Error("Exodus II (.exo) is written to a file (netCDF), not to a stream");
   return Status::Error("no solver format for the extension '" + extension + "'");
 }
 
@@ -78,13 +81,22 @@ Status WriteExportFile(const TaggedMesh& mesh, const std::string& path, bool gms
   std::string error;
   const bool written =
     WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
+      const std::string extension = LowerCaseExtension(path);
+      if (extension == ".exo")
+      {
+        // netCDF writes to a path: the temporary file's, renamed into place once closed.
+        const Status status = WriteExodus(mesh, temporary);
+        if (!status.IsOk())
+          message = "cannot write '" + path + "': " + status.GetMessage();
+        return status.IsOk();
+      }
       std::ofstream out(temporary, std::ios::binary);
       if (!out)
       {
         message = "cannot write '" + path + "': " + std::strerror(errno);
         return false;
       }
-      const Status status = WriteExport(mesh, LowerCaseExtension(path), out, gmsh22);
+      const Status status = WriteExport(mesh, extension, out, gmsh22);
       out.close();
       if (!status.IsOk() || !out)
       {

@@ -10,10 +10,11 @@
 namespace cbc3d
 {
 /// The solver formats the tagged mesh goes to, chosen by file extension: .msh (Gmsh 4.1, or
-/// 2.2 with `gmsh22`), .inp (Abaqus), .mesh (Medit), .feb (FEBio), .xdmf (dolfinx's XDMF).
+/// 2.2 with `gmsh22`), .inp (Abaqus), .mesh (Medit), .feb (FEBio), .xdmf (dolfinx's XDMF),
+/// .exo (Exodus II, netCDF: written to a file only, by WriteExportFile).
 bool IsExportExtension(const std::string& extension);
 
-/// The extensions above, for messages: ".msh, .inp, .mesh, .feb, .xdmf".
+/// The extensions above, for messages: ".msh, .inp, .mesh, .feb, .xdmf, .exo".
 std::string ExportExtensions();
 
 /// What every writer does first: an error for a mesh with no tets, else full double precision
@@ -23,7 +24,8 @@ Status BeginExport(const TaggedMesh& mesh, std::ostream& out);
 /// What every writer returns: an error if the stream failed.
 Status EndExport(const std::ostream& out);
 
-/// Writes the mesh in the format of `extension` (lower case, with its dot).
+/// Writes the mesh in the format of `extension` (lower case, with its dot); an error for .exo,
+/// which netCDF writes to a path (WriteExportFile).
 Status WriteExport(
   const TaggedMesh& mesh, const std::string& extension, std::ostream& out, bool gmsh22 = false);
 /// The lower-cased extension of a file name with its dot (".msh"), "" if none.
