@@ -5,11 +5,11 @@
  *
  * Input: a vtkUnstructuredGrid of VTK_TETRA cells with an integer `Label` cell array. The file
  * name's extension picks the format: `.msh` (Gmsh 4.1, or 2.2 with MshVersion22), `.inp`
- * (Abaqus), `.mesh` (Medit), `.feb` (FEBio 4.0), `.xdmf` (dolfinx's XDMF, inline), `.exo`
- * (Exodus II: element blocks and side sets). Tissues are
- * named tissue_<label>, boundaries boundary_<label>, interfaces interface_<a>_<b>; the formats
- * without names carry the surface ids (Documentation/Exporting.md). The file appears whole or
- * not at all. In ParaView: File > Save Data with the CBC3D plugin loaded, or pvpython's
+ * (Abaqus), `.mesh` (Medit), `.feb` (FEBio 4.0), `.xdmf` (dolfinx's XDMF, its heavy data in an
+ * HDF5 `.h5` beside it, mesh.xdmf + mesh.h5), `.exo` (Exodus II: element blocks and side sets).
+ * Tissues are named tissue_<label>, boundaries boundary_<label>, interfaces interface_<a>_<b>;
+ * the formats without names carry the surface ids (Documentation/Exporting.md). The file (for
+ * .xdmf both files) appears whole or not at all. In ParaView: File > Save Data with the CBC3D plugin loaded, or pvpython's
  * SaveData("mesh.msh", proxy=...).
  *
  * @sa vtkCBC3DTissueSurfaces

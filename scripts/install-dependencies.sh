@@ -12,8 +12,8 @@ packages=(
   paraview paraview-dev python3-paraview python3-numpy
   # FE clients and converters the mesh tests hand meshes to; scipy cross-checks the checker
   python3-dolfinx-real python3-meshio python3-gmsh python3-netcdf4 python3-scipy
-  # core dependencies
-  libeigen3-dev
+  # core dependencies (serial HDF5 for the .xdmf's .h5; libnetcdf-dev, for .exo, is below)
+  libeigen3-dev libhdf5-dev
   # packages ParaView's CMake config requires at configure time
   qtbase5-dev qttools5-dev libqt5svg5-dev libqt5x11extras5-dev
   qtxmlpatterns5-dev-tools libqt5opengl5-dev libutfcpp-dev

@@ -97,11 +97,11 @@ Mesh a 3-D label image into a conforming multi-tissue tetrahedral mesh (CBC3D).
                       extension picks the format: .vtu (VTK XML, binary), .vtk
                       (legacy 4.2, binary), .msh (Gmsh 4.1; 2.2 with --msh-version),
                       .inp (Abaqus), .mesh (Medit), .feb (FEBio 4.0), .xdmf
-                      (FEniCSx/dolfinx), .exo (Exodus II). The solver formats
-                      name each tissue tissue_<label>, each boundary
-                      boundary_<label> and each interface interface_<a>_<b>
-                      (Documentation/Exporting.md). Every file is written whole
-                      or not at all
+                      (FEniCSx/dolfinx, with a .h5 beside it), .exo (Exodus II).
+                      The solver formats name each tissue tissue_<label>, each
+                      boundary boundary_<label> and each interface
+                      interface_<a>_<b> (Documentation/Exporting.md). Every file
+                      is written whole or not at all
   --msh-version V     Gmsh .msh version: 4.1 (default) or 2.2 (older readers, SOFA)
   --surfaces FILE     also write the boundary and interface triangles: .vtp or .vtk
                       (cell arrays BoundaryLabels: the labels on both sides, and

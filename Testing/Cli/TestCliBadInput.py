@@ -61,6 +61,8 @@ with tempfile.TemporaryDirectory() as work:
     png = os.path.join(work, "picture.png")
     with open(png, "wb") as f:
         f.write(b"\x89PNG")
+    blocked = os.path.join(work, "blocked")
+    os.makedirs(os.path.join(blocked, "m.h5"))  # a folder where the .xdmf's .h5 would go
 
     cases = [
         ("missing", [os.path.join(work, "nothere.nii.gz"), "-o", "OUT"], "No such file"),
@@ -98,9 +100,16 @@ with tempfile.TemporaryDirectory() as work:
         ("missing_value", [PHANTOM, "-o", "OUT", "--bcc-size"], "needs a value"),
         ("output_folder_missing", [PHANTOM, "-o", os.path.join(work, "no", "dir", "m.vtu")], "cannot write"),
         ("background_everything", [PHANTOM, "-o", "OUT", "--background", "0", "--background", "1"], "no tissue"),
+        # .xdmf is two files (the .xdmf and its .h5): neither appears when the folder is missing
+        ("xdmf_folder_missing", [PHANTOM, "-o", os.path.join(work, "no", "dir", "m.xdmf")], "cannot write"),
+        # ... nor when the .h5's name is taken by a folder (checked below: nothing else there)
+        ("xdmf_h5_blocked", [PHANTOM, "-o", os.path.join(blocked, "m.xdmf")], "m.h5"),
     ]
     for name, args, fragment in cases:
         expect_error(name, args, fragment, work)
+    if sorted(os.listdir(blocked)) != ["m.h5"]:
+        failures.append(("xdmf_h5_blocked", sorted(os.listdir(blocked))))
+        print("FAIL xdmf_h5_blocked left:", sorted(os.listdir(blocked)))
     stray = [f for f in os.listdir(work) if ".part-" in f]
     if stray:
         failures.append(("temporary files", stray))

@@ -1,5 +1,6 @@
-# Plain python3 with Debian's dolfinx 0.5.2 (python3-dolfinx-real): dolfinx reads the .xdmf
-# cbc3d writes (read_mesh "mesh", read_meshtags "tissues" and "surfaces"), with, computed from
+# Plain python3 with Debian's dolfinx 0.5.2 (python3-dolfinx-real): dolfinx, opening the file
+# as a FEniCSx user does (XDMFFile's default encoding, HDF5), reads the .xdmf and the .h5 beside
+# it that cbc3d writes (read_mesh "mesh", read_meshtags "tissues" and "surfaces"), with, computed from
 # the .vtu with numpy (export_expectations.py): the tets, the tets and the volume per tissue
 # (integrated by dolfinx over each cell tag), the triangles and the area per surface (each facet
 # tag, id as documented: boundaries by tissue, then interfaces). It then solves linear
@@ -31,9 +32,9 @@ def integrate(form):
 with tempfile.TemporaryDirectory() as work:
     points, tets, labels = ex.mesh_phantom(work, ["mesh.xdmf"])
     want = ex.expected(points, tets, labels)
-    # Inline XML data: open with ASCII encoding (the default, HDF5, looks for mesh.h5).
-    with dolfinx.io.XDMFFile(MPI.COMM_WORLD, os.path.join(work, "mesh.xdmf"), "r",
-                             encoding=dolfinx.io.XDMFFile.Encoding.ASCII) as xdmf:
+    check(os.path.isfile(os.path.join(work, "mesh.h5")), "mesh.h5 beside mesh.xdmf")
+    # The default encoding (HDF5): the data items name mesh.h5.
+    with dolfinx.io.XDMFFile(MPI.COMM_WORLD, os.path.join(work, "mesh.xdmf"), "r") as xdmf:
         mesh = xdmf.read_mesh(name="mesh")
         mesh.topology.create_connectivity(2, 3)
         tissues = xdmf.read_meshtags(mesh, name="tissues")

@@ -56,7 +56,8 @@ Status WriteExport(
   if (extension == ".feb")
     return WriteFEBio(mesh, out);
   if (extension == ".xdmf")
-    return WriteXdmf(mesh, out);
+    return Status::Error(
+      "XDMF (.xdmf) is written to files (its heavy data in an HDF5 .h5 beside it), not to a stream");
   if (extension == ".exo")
     return Status::Error("Exodus II (.exo) is written to a file (netCDF), not to a stream");
   return Status::Error("no solver format for the extension '" + extension + "'");
@@ -78,6 +79,13 @@ std::string LowerCaseExtension(const std::string& path)
 
 Status WriteExportFile(const TaggedMesh& mesh, const std::string& path, bool gmsh22)
 {
+  if (LowerCaseExtension(path) == ".xdmf")
+  {
+    // Two files, the .xdmf and its .h5: XdmfWriter makes both appear whole or neither.
+    const Status status = WriteXdmf(mesh, path);
+    return status.IsOk() ? status
+                         : Status::Error("cannot write '" + path + "': " + status.GetMessage());
+  }
   std::string error;
   const bool written =
     WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {

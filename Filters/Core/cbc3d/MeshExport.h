@@ -10,8 +10,9 @@
 namespace cbc3d
 {
 /// The solver formats the tagged mesh goes to, chosen by file extension: .msh (Gmsh 4.1, or
-/// 2.2 with `gmsh22`), .inp (Abaqus), .mesh (Medit), .feb (FEBio), .xdmf (dolfinx's XDMF),
-/// .exo (Exodus II, netCDF: written to a file only, by WriteExportFile).
+/// 2.2 with `gmsh22`), .inp (Abaqus), .mesh (Medit), .feb (FEBio), .xdmf (dolfinx's XDMF with
+/// an HDF5 .h5 beside it) and .exo (Exodus II, netCDF): the last two written to files only, by
+/// WriteExportFile.
 bool IsExportExtension(const std::string& extension);
 
 /// The extensions above, for messages: ".msh, .inp, .mesh, .feb, .xdmf, .exo".
@@ -24,14 +25,15 @@ Status BeginExport(const TaggedMesh& mesh, std::ostream& out);
 /// What every writer returns: an error if the stream failed.
 Status EndExport(const std::ostream& out);
 
-/// Writes the mesh in the format of `extension` (lower case, with its dot); an error for .exo,
-/// which netCDF writes to a path (WriteExportFile).
+/// Writes the mesh in the format of `extension` (lower case, with its dot); an error for .exo
+/// and .xdmf, which netCDF and HDF5 write to paths (WriteExportFile).
 Status WriteExport(
   const TaggedMesh& mesh, const std::string& extension, std::ostream& out, bool gmsh22 = false);
 /// The lower-cased extension of a file name with its dot (".msh"), "" if none.
 std::string LowerCaseExtension(const std::string& path);
 
-/// Writes the file `path` in the format of its extension, whole or not at all (AtomicFile.h).
+/// Writes the file `path` in the format of its extension, whole or not at all (AtomicFile.h);
+/// for .xdmf, the .xdmf and its .h5 (XdmfWriter.h), both whole or neither.
 Status WriteExportFile(const TaggedMesh& mesh, const std::string& path, bool gmsh22 = false);
 } // namespace cbc3d
 

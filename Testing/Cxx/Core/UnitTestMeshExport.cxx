@@ -96,16 +96,6 @@ TEST(MeshExport, FEBioHasABlockPerTissueAndASurfacePerPair)
   EXPECT_EQ(Count(text, "<material id="), 2u);
 }
 
-TEST(MeshExport, XdmfHasTheMeshAndBothTags)
-{
-  const std::string text = Export(TwoTaggedCubes(), ".xdmf");
-  EXPECT_TRUE(Has(text, "<Grid Name=\"mesh\""));
-  EXPECT_TRUE(Has(text, "<Grid Name=\"tissues\""));
-  EXPECT_TRUE(Has(text, "<Grid Name=\"surfaces\""));
-  EXPECT_TRUE(Has(text, "TopologyType=\"Triangle\" NumberOfElements=\"22\""));
-  EXPECT_EQ(Count(text, "TopologyType=\"Tetrahedron\" NumberOfElements=\"12\""), 2u);
-}
-
 // Reads the Abaqus element sets and surfaces back: surface name -> (element, face) pairs.
 std::map<std::string, std::vector<std::pair<int, int>>> AbaqusSurfaces(const std::string& text)
 {
