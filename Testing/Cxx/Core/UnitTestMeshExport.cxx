@@ -2,6 +2,7 @@
 // triangles: boundary_1 and boundary_2 of 10, interface_1_2 of 2): counts, names, and the
 // Abaqus faces, read back from the text.
 #include "TestMeshes.h"
+#include "TestTaggedMeshes.h"
 
 #include "cbc3d/MeshExport.h"
 
@@ -13,15 +14,6 @@
 namespace
 {
 using namespace cbc3d;
-
-TaggedMesh TwoTaggedCubes()
-{
-  const TetMesh mesh = cbc3d::testing::KuhnGrid(
-    2, 1, 1, [](int, int, int) { return true; }, [](int x, int, int, int) { return x + 1; });
-  TaggedMesh tagged;
-  EXPECT_TRUE(BuildTaggedMesh(mesh, 0, tagged).IsOk());
-  return tagged;
-}
 
 std::string Export(const TaggedMesh& mesh, const std::string& extension, bool gmsh22 = false)
 {
@@ -46,7 +38,7 @@ bool Has(const std::string& text, const std::string& part)
 
 TEST(MeshExport, GmshNamesEveryTissueAndSurface)
 {
-  const TaggedMesh mesh = TwoTaggedCubes();
+  const TaggedMesh mesh = cbc3d::testing::TwoTaggedCubes();
   const std::string names = "$PhysicalNames\n5\n2 1 \"boundary_1\"\n2 2 \"boundary_2\"\n"
                             "2 3 \"interface_1_2\"\n3 1 \"tissue_1\"\n3 2 \"tissue_2\"\n";
   const std::string v41 = Export(mesh, ".msh");
@@ -68,7 +60,7 @@ TEST(MeshExport, GmshNamesEveryTissueAndSurface)
 
 TEST(MeshExport, GmshRejectsTissueLabelZero)
 {
-  TaggedMesh mesh = TwoTaggedCubes();
+  TaggedMesh mesh = cbc3d::testing::TwoTaggedCubes();
   mesh.Tissues.front() = 0;
   std::ostringstream out;
   EXPECT_FALSE(WriteExport(mesh, ".msh", out).IsOk());
@@ -76,7 +68,7 @@ TEST(MeshExport, GmshRejectsTissueLabelZero)
 
 TEST(MeshExport, MeditRefsAreLabelsAndSurfaceIds)
 {
-  const std::string text = Export(TwoTaggedCubes(), ".mesh");
+  const std::string text = Export(cbc3d::testing::TwoTaggedCubes(), ".mesh");
   EXPECT_TRUE(Has(text, "Triangles\n22\n"));
   EXPECT_TRUE(Has(text, "Tetrahedra\n12\n"));
   EXPECT_TRUE(Has(text, "# 3 interface_1_2\n"));
@@ -85,7 +77,7 @@ TEST(MeshExport, MeditRefsAreLabelsAndSurfaceIds)
 
 TEST(MeshExport, FEBioHasABlockPerTissueAndASurfacePerPair)
 {
-  const std::string text = Export(TwoTaggedCubes(), ".feb");
+  const std::string text = Export(cbc3d::testing::TwoTaggedCubes(), ".feb");
   EXPECT_TRUE(Has(text, "<febio_spec version=\"4.0\">"));
   EXPECT_EQ(Count(text, "<node id="), 12u);
   EXPECT_EQ(Count(text, "<elem id="), 12u);
@@ -129,7 +121,7 @@ std::map<std::string, std::vector<std::pair<int, int>>> AbaqusSurfaces(const std
 
 TEST(MeshExport, AbaqusSurfacesAreTheRightTetFaces)
 {
-  const TaggedMesh mesh = TwoTaggedCubes();
+  const TaggedMesh mesh = cbc3d::testing::TwoTaggedCubes();
   const std::string text = Export(mesh, ".inp");
   EXPECT_EQ(Count(text, "*ELSET, ELSET=tissue_"), 2u);
   EXPECT_EQ(Count(text, "*SURFACE, TYPE=ELEMENT"), 3u);
@@ -157,7 +149,7 @@ TEST(MeshExport, AbaqusSurfacesAreTheRightTetFaces)
 TEST(MeshExport, UnknownExtensionAndEmptyMeshFail)
 {
   std::ostringstream out;
-  EXPECT_FALSE(WriteExport(TwoTaggedCubes(), ".stl", out).IsOk());
+  EXPECT_FALSE(WriteExport(cbc3d::testing::TwoTaggedCubes(), ".stl", out).IsOk());
   EXPECT_FALSE(IsExportExtension(".vtu"));
   EXPECT_TRUE(IsExportExtension(".feb"));
   for (const std::string extension : { ".msh", ".inp", ".mesh", ".feb", ".xdmf" })

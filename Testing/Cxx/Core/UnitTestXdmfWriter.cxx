@@ -5,6 +5,7 @@
 // gives the same bytes; and a failed write (no stream, no folder, an unwritable folder, the
 // .xdmf's name taken by a folder) leaves neither file nor a temporary one.
 #include "TestMeshes.h"
+#include "TestTaggedMeshes.h"
 
 #include "cbc3d/MeshExport.h"
 #include "cbc3d/XdmfWriter.h"
@@ -21,15 +22,6 @@
 namespace
 {
 using namespace cbc3d;
-
-TaggedMesh TwoTaggedCubes()
-{
-  const TetMesh mesh = cbc3d::testing::KuhnGrid(
-    2, 1, 1, [](int, int, int) { return true; }, [](int x, int, int, int) { return x + 1; });
-  TaggedMesh tagged;
-  EXPECT_TRUE(BuildTaggedMesh(mesh, 0, tagged).IsOk());
-  return tagged;
-}
 
 std::string Read(const std::string& path)
 {
@@ -108,7 +100,7 @@ protected:
 
 TEST_F(XdmfWriter, MeshAndTagsInTheH5Beside)
 {
-  const TaggedMesh mesh = TwoTaggedCubes();
+  const TaggedMesh mesh = cbc3d::testing::TwoTaggedCubes();
   EXPECT_EQ(XdmfHeavyDataPath(this->Path), this->Folder + "/mesh.h5");
   EXPECT_EQ(XdmfHeavyDataPath("a.b/mesh"), "a.b/mesh.h5");
   const Status status = WriteExportFile(mesh, this->Path);
@@ -174,11 +166,11 @@ TEST_F(XdmfWriter, MeshAndTagsInTheH5Beside)
 TEST_F(XdmfWriter, OnlyToFilesAndNeverHalfWritten)
 {
   std::ostringstream out;
-  EXPECT_FALSE(WriteExport(TwoTaggedCubes(), ".xdmf", out).IsOk()); // HDF5 needs a path
+  EXPECT_FALSE(WriteExport(cbc3d::testing::TwoTaggedCubes(), ".xdmf", out).IsOk()); // HDF5 needs a path
   EXPECT_TRUE(IsExportExtension(".xdmf"));
   EXPECT_FALSE(WriteExportFile(TaggedMesh(), this->Path).IsOk());
   EXPECT_TRUE(Listing(this->Folder).empty());
-  const Status missing = WriteExportFile(TwoTaggedCubes(), this->Folder + "/no/such/mesh.xdmf");
+  const Status missing = WriteExportFile(cbc3d::testing::TwoTaggedCubes(), this->Folder + "/no/such/mesh.xdmf");
   EXPECT_FALSE(missing.IsOk());
   EXPECT_NE(missing.GetMessage().find("no/such/mesh.xdmf"), std::string::npos)
     << missing.GetMessage();
@@ -186,14 +178,14 @@ TEST_F(XdmfWriter, OnlyToFilesAndNeverHalfWritten)
   // The .xdmf's name taken by a folder: the .h5 is written and renamed, the .xdmf's rename
   // fails, and the .h5 goes again.
   ASSERT_EQ(mkdir(this->Path.c_str(), 0700), 0);
-  EXPECT_FALSE(WriteExportFile(TwoTaggedCubes(), this->Path).IsOk());
+  EXPECT_FALSE(WriteExportFile(cbc3d::testing::TwoTaggedCubes(), this->Path).IsOk());
   EXPECT_EQ(Listing(this->Folder), (std::vector<std::string>{ "mesh.xdmf" }));
   rmdir(this->Path.c_str());
 
   if (geteuid() != 0) // root writes anywhere
   {
     ASSERT_EQ(chmod(this->Folder.c_str(), 0500), 0);
-    const Status unwritable = WriteExportFile(TwoTaggedCubes(), this->Path);
+    const Status unwritable = WriteExportFile(cbc3d::testing::TwoTaggedCubes(), this->Path);
     chmod(this->Folder.c_str(), 0700);
     EXPECT_FALSE(unwritable.IsOk());
     EXPECT_TRUE(Listing(this->Folder).empty());
