@@ -384,9 +384,6 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     return Status::Ok();
   }
   const Matcher matcher(sources, targets, threads);
-  // Half a voxel per round at most: the shortfalls left are well under a voxel deep.
-  const TissueVolumeKeeper volumes(mesh, params.KeepVolumes ? TissueImageVolumes(image) : std::map<std::int32_t, double>(),
-    0.5 * image.Spacing.minCoeff());
   // Boundary voxels are dense: a grid of a few voxels per cell keeps each query short.
   FidelityGuard fidelity(image, mesh, 2.0 * image.Spacing.maxCoeff(), threads, stops.KeepGoing);
   if (stops.Stopped(0.07))
@@ -425,11 +422,15 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
       return Status::Aborted();
     }
   }
-  if (params.KeepVolumes && result.Iterations > 0 &&
-    RestoreTissueVolumes(volumes, mesh, sources.Points, x, bound, threads, fidelity, stops.KeepGoing) ==
-      StepOutcome::Aborted)
+  if (params.KeepVolumes && result.Iterations > 0)
   {
-    return Status::Aborted();
+    // Half a voxel per round at most: the shortfalls left are well under a voxel deep.
+    const TissueVolumeKeeper volumes(mesh, TissueImageVolumes(image), 0.5 * image.Spacing.minCoeff());
+    if (RestoreTissueVolumes(volumes, mesh, sources.Points, x, bound, threads, fidelity, stops.KeepGoing) ==
+      StepOutcome::Aborted)
+    {
+      return Status::Aborted();
+    }
   }
   for (std::size_t p = 0; p < x.size(); ++p)
   {
