@@ -287,6 +287,18 @@ bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, cbc3d::TetMesh& out, std::s
   return true;
 }
 
+bool ToTaggedMesh(vtkUnstructuredGrid* grid, std::int32_t outside, cbc3d::TaggedMesh& out, std::string& error)
+{
+  cbc3d::TetMesh tets;
+  if (!FromUnstructuredGrid(grid, tets, error))
+  {
+    return false;
+  }
+  const cbc3d::Status status = cbc3d::BuildTaggedMesh(tets, outside, out);
+  error = status.GetMessage();
+  return status.IsOk();
+}
+
 cbc3d::Progress MakeProgress(vtkAlgorithm* algorithm)
 {
   return [algorithm](double fraction) {

@@ -49,6 +49,12 @@ bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
  */
 bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, cbc3d::TetMesh& out, std::string& error);
 
+/**
+ * The tagged mesh of a tetrahedral grid with a `Label` cell array (FromUnstructuredGrid, then
+ * cbc3d::BuildTaggedMesh with `outside` standing for the outside); false with a one-line message.
+ */
+bool ToTaggedMesh(vtkUnstructuredGrid* grid, std::int32_t outside, cbc3d::TaggedMesh& out, std::string& error);
+
 /// Fills `out` with the mesh's points, VTK_TETRA cells and the `Label` cell array.
 void ToUnstructuredGrid(const cbc3d::TetMesh& mesh, vtkUnstructuredGrid* out);
 

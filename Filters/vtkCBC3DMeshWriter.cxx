@@ -37,19 +37,14 @@ void vtkCBC3DMeshWriter::WriteData()
     vtkErrorMacro(<< "unknown extension for '" << path << "': use " << cbc3d::ExportExtensions());
     return;
   }
-  cbc3d::TetMesh mesh;
+  cbc3d::TaggedMesh tagged;
   std::string error;
-  if (!vtkCBC3DConvert::FromUnstructuredGrid(vtkUnstructuredGrid::SafeDownCast(this->GetInput()), mesh, error))
+  if (!vtkCBC3DConvert::ToTaggedMesh(vtkUnstructuredGrid::SafeDownCast(this->GetInput()), this->OutsideLabel, tagged, error))
   {
     vtkErrorMacro(<< error);
     return;
   }
-  cbc3d::TaggedMesh tagged;
-  cbc3d::Status status = cbc3d::BuildTaggedMesh(mesh, this->OutsideLabel, tagged);
-  if (status.IsOk())
-  {
-    status = cbc3d::WriteExportFile(tagged, path, this->MshVersion22);
-  }
+  const cbc3d::Status status = cbc3d::WriteExportFile(tagged, path, this->MshVersion22);
   if (!status.IsOk())
   {
     vtkErrorMacro(<< status.GetMessage());

@@ -24,18 +24,11 @@ int vtkCBC3DTissueSurfaces::FillInputPortInformation(int, vtkInformation* info)
 int vtkCBC3DTissueSurfaces::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
-  cbc3d::TetMesh mesh;
+  cbc3d::TaggedMesh tagged;
   std::string error;
-  if (!vtkCBC3DConvert::FromUnstructuredGrid(vtkUnstructuredGrid::GetData(inputVector[0]), mesh, error))
+  if (!vtkCBC3DConvert::ToTaggedMesh(vtkUnstructuredGrid::GetData(inputVector[0]), this->OutsideLabel, tagged, error))
   {
     vtkErrorMacro(<< error);
-    return 0;
-  }
-  cbc3d::TaggedMesh tagged;
-  const cbc3d::Status status = cbc3d::BuildTaggedMesh(mesh, this->OutsideLabel, tagged);
-  if (!status.IsOk())
-  {
-    vtkErrorMacro(<< status.GetMessage());
     return 0;
   }
   vtkCBC3DConvert::ToPolyData(tagged, vtkPolyData::GetData(outputVector));

@@ -17,19 +17,6 @@
 
 #include <functional>
 
-bool MakeTaggedMesh(
-  vtkUnstructuredGrid* mesh, int outside, cbc3d::TaggedMesh& out, std::string& error)
-{
-  cbc3d::TetMesh tets;
-  if (!vtkCBC3DConvert::FromUnstructuredGrid(mesh, tets, error))
-  {
-    return false;
-  }
-  const cbc3d::Status status = cbc3d::BuildTaggedMesh(tets, outside, out);
-  error = status.GetMessage();
-  return status.IsOk();
-}
-
 namespace
 {
 // Runs one VTK writer, set up like the mesh files' writers, on `surfaces`.

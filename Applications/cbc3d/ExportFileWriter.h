@@ -5,13 +5,6 @@
 
 #include <string>
 
-class vtkUnstructuredGrid;
-
-/// The tagged mesh of cbc3d's output: its tets and labels, and every boundary and interface
-/// triangle, the outside being `outside` (the first background label).
-bool MakeTaggedMesh(
-  vtkUnstructuredGrid* mesh, int outside, cbc3d::TaggedMesh& out, std::string& error);
-
 /// Writes the boundary and interface triangles with their `BoundaryLabels` and `SurfaceId` cell
 /// arrays (.vtp: VTK XML, inline binary; .vtk: legacy 4.2, binary), or their geometry alone
 /// (.stl binary, .obj, which have no cell arrays), whole or not at all.

@@ -9,6 +9,7 @@
 
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DBCCLattice.h"
+#include "vtkCBC3DConvert.h"
 #include "vtkCBC3DDeformation.h"
 #include "vtkCBC3DMeshQuality.h"
 #include "vtkCBC3DRefinement.h"
@@ -144,7 +145,7 @@ bool WriteOutputs(
   cbc3d::TaggedMesh tagged;
   bool taggedReady = false;
   auto tag = [&]() {
-    if (!taggedReady && MakeTaggedMesh(mesh, options.BackgroundLabels.front(), tagged, error))
+    if (!taggedReady && vtkCBC3DConvert::ToTaggedMesh(mesh, options.BackgroundLabels.front(), tagged, error))
     {
       taggedReady = true;
       ReportSurfaces(tagged, report);
