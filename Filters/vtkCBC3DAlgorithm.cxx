@@ -1,6 +1,7 @@
 #include "vtkCBC3DAlgorithm.h"
 
 #include "vtkCBC3DConvert.h"
+#include "vtkCBC3DLabelImageCache.h"
 
 #include "cbc3d/LabelImage.h"
 #include "cbc3d/Status.h"
@@ -89,18 +90,19 @@ int vtkCBC3DAlgorithm::GetBackgroundLabel(int index) const
   return this->BackgroundLabels.at(index);
 }
 
-bool vtkCBC3DAlgorithm::ReadLabelImage(vtkInformationVector** inputVector, cbc3d::LabelImage& image)
+std::shared_ptr<const cbc3d::LabelImage> vtkCBC3DAlgorithm::ReadLabelImage(
+  vtkInformationVector** inputVector)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[this->ImagePort]);
   vtkDataArray* labels =
     vtkCBC3DConvert::ChooseLabelArray(this->GetInputArrayInformation(0), input);
   std::string error;
-  if (!vtkCBC3DConvert::ToLabelImage(input, labels, this->BackgroundLabels, image, error))
+  auto image = vtkCBC3DLabelImageCache::Get(input, labels, this->BackgroundLabels, error);
+  if (!image)
   {
     vtkErrorMacro(<< error);
-    return false;
   }
-  return true;
+  return image;
 }
 
 bool vtkCBC3DAlgorithm::ReadMesh(vtkInformationVector** inputVector, cbc3d::TetMesh& mesh)

@@ -16,6 +16,7 @@
 #include "vtkCBC3DFiltersModule.h" // For export macro
 #include "vtkUnstructuredGridAlgorithm.h"
 
+#include <memory> // For the shared label image
 #include <vector> // For background labels
 
 class vtkImageData;
@@ -79,10 +80,11 @@ protected:
   ~vtkCBC3DAlgorithm() override = default;
 
   /**
-   * Reads the label image on its port into the core's view. On failure reports the problem
-   * with vtkErrorMacro and returns false.
+   * The core's view of the label image on its port, shared with the other stages that read
+   * the same image (vtkCBC3DLabelImageCache). On failure reports the problem with
+   * vtkErrorMacro and returns null.
    */
-  bool ReadLabelImage(vtkInformationVector** inputVector, cbc3d::LabelImage& image);
+  std::shared_ptr<const cbc3d::LabelImage> ReadLabelImage(vtkInformationVector** inputVector);
 
   /**
    * Reads the labelled tet mesh on port 0 (filters whose image is on port 1). On failure
@@ -98,10 +100,10 @@ protected:
   int EndOnFailure(const cbc3d::Status& status, vtkUnstructuredGrid* output);
 
   /// ReadMesh, then ReadLabelImage: the inputs of the filters that refine or move a mesh.
-  bool ReadMeshAndImage(
-    vtkInformationVector** inputVector, cbc3d::TetMesh& mesh, cbc3d::LabelImage& image)
+  bool ReadMeshAndImage(vtkInformationVector** inputVector, cbc3d::TetMesh& mesh,
+    std::shared_ptr<const cbc3d::LabelImage>& image)
   {
-    return this->ReadMesh(inputVector, mesh) && this->ReadLabelImage(inputVector, image);
+    return this->ReadMesh(inputVector, mesh) && (image = this->ReadLabelImage(inputVector));
   }
 
   int ImagePort;

@@ -18,8 +18,8 @@ int vtkCBC3DBCCLattice::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
-  cbc3d::LabelImage image;
-  if (!this->ReadLabelImage(inputVector, image))
+  const std::shared_ptr<const cbc3d::LabelImage> image = this->ReadLabelImage(inputVector);
+  if (!image)
   {
     return 0;
   }
@@ -29,7 +29,7 @@ int vtkCBC3DBCCLattice::RequestData(
   params.NumberOfThreads = this->NumberOfThreads;
   cbc3d::TetMesh mesh;
   const cbc3d::Status status =
-    cbc3d::BuildBCCLattice(image, params, mesh, vtkCBC3DConvert::MakeProgress(this));
+    cbc3d::BuildBCCLattice(*image, params, mesh, vtkCBC3DConvert::MakeProgress(this));
   if (!status.IsOk())
   {
     return this->EndOnFailure(status, output);
@@ -37,7 +37,7 @@ int vtkCBC3DBCCLattice::RequestData(
   vtkCBC3DConvert::ToUnstructuredGrid(mesh, output);
   vtkNew<vtkDoubleArray> edge;
   edge->SetName(vtkCBC3DArrayNames::LatticeEdgeLength);
-  edge->InsertNextValue(params.EdgeLength > 0 ? params.EdgeLength : cbc3d::DefaultLatticeEdgeLength(image));
+  edge->InsertNextValue(params.EdgeLength > 0 ? params.EdgeLength : cbc3d::DefaultLatticeEdgeLength(*image));
   output->GetFieldData()->AddArray(edge);
   return 1;
 }

@@ -58,7 +58,7 @@ int vtkCBC3DDeformation::RequestData(
   vtkUnstructuredGrid* input = vtkUnstructuredGrid::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
   cbc3d::TetMesh mesh;
-  cbc3d::LabelImage image;
+  std::shared_ptr<const cbc3d::LabelImage> image;
   if (!this->ReadMeshAndImage(inputVector, mesh, image))
   {
     return 0;
@@ -94,7 +94,7 @@ int vtkCBC3DDeformation::RequestData(
   cbc3d::TetMesh moved;
   cbc3d::DeformationResult result;
   const cbc3d::Status status =
-    cbc3d::DeformMesh(image, mesh, params, moved, result, vtkCBC3DConvert::MakeProgress(this));
+    cbc3d::DeformMesh(*image, mesh, params, moved, result, vtkCBC3DConvert::MakeProgress(this));
   if (!status.IsOk())
   {
     return this->EndOnFailure(status, output);

@@ -183,8 +183,8 @@ int vtkCBC3DMeshQuality::RequestData(
   {
     return 0;
   }
-  cbc3d::LabelImage image;
-  if (withImage && !this->ReadLabelImage(inputVector, image))
+  std::shared_ptr<const cbc3d::LabelImage> image;
+  if (withImage && !(image = this->ReadLabelImage(inputVector)))
   {
     return 0;
   }
@@ -205,7 +205,7 @@ int vtkCBC3DMeshQuality::RequestData(
   if (withImage)
   {
     surface = cbc3d::TissueSurfaceVertices(mesh);
-    boundary = cbc3d::TissueBoundaryVoxelCentres(image, this->NumberOfThreads);
+    boundary = cbc3d::TissueBoundaryVoxelCentres(*image, this->NumberOfThreads);
     for (const auto& entry : boundary)
     {
       labels.insert(entry.first);
@@ -288,7 +288,7 @@ int vtkCBC3DMeshQuality::RequestData(
   std::vector<vtkIdType> tets, inverted, small, large;
   std::vector<double> minima, maxima, hausdorff, meshToImage, imageToMesh, hausdorff95, mean, volume, imageVolume;
   const auto meshVolumes = cbc3d::TissueMeshVolumes(mesh);
-  const auto imageVolumes = withImage ? cbc3d::TissueImageVolumes(image) : std::map<std::int32_t, double>();
+  const auto imageVolumes = withImage ? cbc3d::TissueImageVolumes(*image) : std::map<std::int32_t, double>();
   auto volumeOf = [](const std::map<std::int32_t, double>& volumes, int label) {
     const auto found = volumes.find(label);
     return found == volumes.end() ? 0.0 : found->second;
@@ -341,7 +341,7 @@ int vtkCBC3DMeshQuality::RequestData(
     AddFieldArray<vtkDoubleArray>(fields, names::TissueMeanSurfaceDistance, mean);
   }
   const cbc3d::ImageTopology imageTopology =
-    withImage ? cbc3d::MeasureImageTopology(image, this->NumberOfThreads) : cbc3d::ImageTopology();
+    withImage ? cbc3d::MeasureImageTopology(*image, this->NumberOfThreads) : cbc3d::ImageTopology();
   AddTopologyFields(fields, cbc3d::MeasureMeshTopology(mesh), withImage ? &imageTopology : nullptr, tissueLabels);
   output->SetFieldData(fields);
   this->UpdateProgress(1.0);

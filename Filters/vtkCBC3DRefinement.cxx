@@ -32,7 +32,7 @@ int vtkCBC3DRefinement::RequestData(
   vtkUnstructuredGrid* input = vtkUnstructuredGrid::GetData(inputVector[0]);
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
   cbc3d::TetMesh lattice;
-  cbc3d::LabelImage image;
+  std::shared_ptr<const cbc3d::LabelImage> image;
   if (!this->ReadMeshAndImage(inputVector, lattice, image))
   {
     return 0;
@@ -47,7 +47,7 @@ int vtkCBC3DRefinement::RequestData(
   cbc3d::TetMesh mesh;
   cbc3d::RefinementResult result;
   const cbc3d::Status status =
-    cbc3d::RefineMesh(image, lattice, params, mesh, result, vtkCBC3DConvert::MakeProgress(this));
+    cbc3d::RefineMesh(*image, lattice, params, mesh, result, vtkCBC3DConvert::MakeProgress(this));
   if (!status.IsOk())
   {
     return this->EndOnFailure(status, output);

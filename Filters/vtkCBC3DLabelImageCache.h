@@ -1,0 +1,34 @@
+/**
+ * @class   vtkCBC3DLabelImageCache
+ * @brief   The core's view of the last label image read, shared by the filters that read it.
+ *
+ * A pipeline hands one image to every CBC3D stage (lattice, refinement, deformation, quality),
+ * and each stage needs the same int32 copy of its labels. Converting it once per stage cost a
+ * quarter of the run on a large, mostly empty image (every conversion allocates, faults in and
+ * fills a whole-image array). The cache keeps the last conversion, keyed by the label array,
+ * its and the image's modification times and the background labels; a changed input or
+ * setting misses and converts again. One entry, so it holds at most one image.
+ */
+#ifndef vtkCBC3DLabelImageCache_h
+#define vtkCBC3DLabelImageCache_h
+
+#include <memory>
+#include <string>
+#include <vector>
+
+class vtkDataArray;
+class vtkImageData;
+namespace cbc3d
+{
+struct LabelImage;
+}
+
+namespace vtkCBC3DLabelImageCache
+{
+/// The label image of `image`'s array `labels` with these background labels: the cached one
+/// when nothing changed since it was converted. Null, with `error` set, for unusable input.
+std::shared_ptr<const cbc3d::LabelImage> Get(vtkImageData* image, vtkDataArray* labels,
+  const std::vector<int>& backgroundLabels, std::string& error);
+}
+
+#endif
