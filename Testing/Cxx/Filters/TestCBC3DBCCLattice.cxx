@@ -238,11 +238,62 @@ void TestAbort()
 }
 } // namespace
 
+// Stages share one conversion of the label image (vtkCBC3DLabelImageCache): a change to the
+// labels, to the image's geometry or to the background labels must be seen, never a stale copy.
+void TestSharedImageFollowsChanges()
+{
+  vtkSmartPointer<vtkImageData> image = MakeBall<vtkUnsignedShortArray>(128, identity);
+  vtkNew<vtkCBC3DBCCLattice> lattice;
+  lattice->SetInputData(image);
+  lattice->SetEdgeLength(2.0);
+  lattice->Update();
+  const vtkIdType ball = lattice->GetOutput()->GetNumberOfCells();
+  CHECK(ball > 0);
+  vtkNew<vtkCBC3DBCCLattice> other; // a second stage on the same image gets the same lattice
+  other->SetInputData(image);
+  other->SetEdgeLength(2.0);
+  other->Update();
+  CHECK(other->GetOutput()->GetNumberOfCells() == ball);
+
+  // Half the ball becomes background: the lattice covers a smaller box.
+  vtkDataArray* labels = image->GetPointData()->GetScalars();
+  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    image->GetPoint(i, p);
+    if (p[0] < 5.0 + 0.8 * 9.5)
+    {
+      labels->SetTuple1(i, 0.0);
+    }
+  }
+  labels->Modified();
+  other->Modified();
+  other->Update();
+  const vtkIdType half = other->GetOutput()->GetNumberOfCells();
+  CHECK(half > 0 && half < ball);
+
+  // The tissue label made background: no tissue left, an error and no tets.
+  other->AddBackgroundLabel(128);
+  vtkNew<cbc3dtest::MessageCatcher> catcher;
+  other->AddObserver(vtkCommand::ErrorEvent, catcher);
+  other->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, catcher);
+  other->Update();
+  CHECK(other->GetOutput()->GetNumberOfCells() == 0);
+  CHECK(catcher->Text.find("no tissue") != std::string::npos);
+
+  // Twice the spacing along x with the labels as they were: a box twice as wide.
+  other->SetBackgroundLabel(0);
+  image->SetSpacing(1.6, 1.0, 1.2);
+  other->Update();
+  CHECK(other->GetOutput()->GetNumberOfCells() > half);
+}
+
 int TestCBC3DBCCLattice(int, char*[])
 {
   TestLatticeOnReflectedBall();
   TestTopologyMatchesVTK();
   TestInputs();
   TestAbort();
+  TestSharedImageFollowsChanges();
   return cbc3dtest::Finish();
 }
