@@ -33,17 +33,29 @@ BoundaryCoverage::BoundaryCoverage(const LabelImage& image, const TissueComponen
 BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>& points,
   const std::vector<Tet>& tets, const std::vector<std::int32_t>& labels, double distance) const
 {
-  // Per tissue, the faces between one of its tets and a tet of another label, or nothing.
+  // Per tissue, the faces between one of its tets and a tet of another label, or nothing. Only
+  // the held tissues' tets are searched (a face they share with any other tet is one of theirs
+  // alone there), in their order, so the faces come in the same order as over the whole mesh.
+  std::vector<Tet> tissueTets;
+  std::vector<std::int64_t> tetOf;
+  for (std::size_t t = 0; t < tets.size(); ++t)
+  {
+    if (this->Tissues.count(labels[t]))
+    {
+      tissueTets.push_back(tets[t]);
+      tetOf.push_back(static_cast<std::int64_t>(t));
+    }
+  }
   std::map<std::int32_t, std::vector<Face>> surfaces;
-  for (const MeshFace& face : FindMeshFaces(tets, points.size()))
+  for (const MeshFace& face : FindMeshFaces(tissueTets, points.size()))
   {
     for (int side = 0; side < std::min(face.TetCount, 2); ++side)
     {
-      const std::int32_t label = labels[face.Tets[side]];
-      const bool inside = face.TetCount == 2 && labels[face.Tets[1 - side]] == label;
-      if (!inside && this->Tissues.count(label))
+      const std::int64_t tet = tetOf[face.Tets[side]];
+      const bool inside = face.TetCount == 2 && labels[tetOf[face.Tets[1 - side]]] == labels[tet];
+      if (!inside)
       {
-        surfaces[label].push_back({ face.Points, face.Tets[side] });
+        surfaces[labels[tet]].push_back({ face.Points, tet });
       }
     }
   }

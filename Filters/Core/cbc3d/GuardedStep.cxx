@@ -6,7 +6,7 @@
 namespace cbc3d
 {
 std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
-  double minimumRadians, int threads)
+  double minimumRadians, int threads, const std::vector<char>* moved)
 {
   const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
   std::vector<char> bad(count, 0);
@@ -14,6 +14,10 @@ std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::
   for (std::int64_t t = 0; t < count; ++t)
   {
     const Tet& tet = mesh.Tets[t];
+    if (moved && !((*moved)[tet[0]] || (*moved)[tet[1]] || (*moved)[tet[2]] || (*moved)[tet[3]]))
+    {
+      continue;
+    }
     if (!(SignedVolume(x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]) > 0.0))
     {
       bad[t] = 1;
@@ -39,6 +43,7 @@ StepOutcome GuardedStep(const TetMesh& mesh, const std::vector<Eigen::Vector3d>&
 {
   trial.resize(x.size());
   share.assign(x.size(), 1.0);
+  std::vector<char> moved(x.size());
   for (int round = 0; round < 50; ++round)
   {
     if (!keepGoing())
@@ -48,8 +53,9 @@ StepOutcome GuardedStep(const TetMesh& mesh, const std::vector<Eigen::Vector3d>&
     for (std::size_t p = 0; p < x.size(); ++p)
     {
       trial[p] = x[p] + share[p] * step(p);
+      moved[p] = trial[p] != x[p];
     }
-    const std::vector<std::int64_t> bad = BadTets(mesh, trial, bound, threads);
+    const std::vector<std::int64_t> bad = BadTets(mesh, trial, bound, threads, &moved);
     if (bad.empty())
     {
       if (fidelity.Hold(trial, share, keepGoing) == 0)

@@ -13,9 +13,11 @@
 
 namespace cbc3d
 {
-/// The tets that points at `x` would invert or push past the angle bound (radians).
+/// The tets that points at `x` would invert or push past the angle bound (radians). With
+/// `moved` (one flag per point), only tets with a moved point are checked: the others are as
+/// they were, and every accepted position satisfies the bound.
 std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
-  double minimumRadians, int threads);
+  double minimumRadians, int threads, const std::vector<char>* moved = nullptr);
 
 enum class StepOutcome
 {

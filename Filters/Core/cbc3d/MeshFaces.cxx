@@ -36,13 +36,24 @@ std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t po
       entries[fill[ids[0]]++] = Entry{ ids[1], ids[2], static_cast<std::int64_t>(t) };
     }
 
-  std::vector<MeshFace> faces;
-  faces.reserve(entries.size() / 2 + 1);
+  // Sorted buckets, then the distinct faces counted, so the list is allocated once.
+  std::size_t distinct = 0;
   for (std::size_t a = 0; a < pointCount; ++a)
   {
     const auto first = entries.begin() + start[a];
     const auto last = entries.begin() + start[a + 1];
     std::sort(first, last);
+    for (auto it = first; it != last; ++it)
+    {
+      distinct += it == first || it->B != (it - 1)->B || it->C != (it - 1)->C;
+    }
+  }
+  std::vector<MeshFace> faces;
+  faces.reserve(distinct);
+  for (std::size_t a = 0; a < pointCount; ++a)
+  {
+    const auto first = entries.begin() + start[a];
+    const auto last = entries.begin() + start[a + 1];
     for (auto it = first; it != last;)
     {
       MeshFace face;
