@@ -17,29 +17,24 @@ constexpr int CleanupRounds = 4;
 ImageRegions KeptRegions(const LabelImage& image, const TissueComponents& tissues, int minimumVoxels,
   std::int32_t background, bool withCavities)
 {
-  const BackgroundComponents gaps = withCavities ? FindBackgroundComponents(image) : BackgroundComponents();
+  BackgroundComponents gaps = withCavities ? FindBackgroundComponents(image) : BackgroundComponents();
   ImageRegions regions;
+  regions.TissueOfVoxel = &tissues.ComponentOfVoxel;
   const std::int32_t tissueCount = static_cast<std::int32_t>(tissues.Label.size());
   for (std::int32_t c = 0; c < tissueCount; ++c)
   {
     regions.ClassOfRegion.push_back(tissues.Label[c]);
     regions.Speck.push_back(tissues.Size[c] < minimumVoxels);
   }
+  // Every background component has a region (unused where it is not kept), as before.
   for (std::size_t c = 0; c < gaps.Size.size(); ++c)
   {
+    const bool kept = !gaps.TouchesBorder[c] && gaps.Size[c] >= minimumVoxels;
+    regions.RegionOfGap.push_back(kept ? tissueCount + std::int32_t(c) : -1);
     regions.ClassOfRegion.push_back(background);
     regions.Speck.push_back(0);
   }
-  regions.RegionOfVoxel.assign(image.Labels.size(), -1);
-  for (std::size_t v = 0; v < image.Labels.size(); ++v)
-  {
-    const std::int32_t tissue = tissues.ComponentOfVoxel[v];
-    const std::int32_t gap = withCavities ? gaps.ComponentOfVoxel[v] : -1;
-    if (tissue >= 0)
-      regions.RegionOfVoxel[v] = tissue;
-    else if (gap >= 0 && !gaps.TouchesBorder[gap] && gaps.Size[gap] >= minimumVoxels)
-      regions.RegionOfVoxel[v] = tissueCount + gap;
-  }
+  regions.GapOfVoxel = std::move(gaps.ComponentOfVoxel);
   return regions;
 }
 

@@ -49,7 +49,7 @@ std::vector<char> KeptPieces(DisjointSets& pieces, const std::vector<std::int32_
   std::vector<std::unordered_map<std::int64_t, std::int64_t>> held(regions.ClassOfRegion.size());
   for (std::size_t v = 0; v < voxelOwner.size(); ++v)
   {
-    const std::int32_t region = regions.RegionOfVoxel[v], owner = voxelOwner[v];
+    const std::int32_t region = regions.RegionOfVoxel(std::int64_t(v)), owner = voxelOwner[v];
     if (region >= 0 && owner >= 0 && classes[owner] == regions.ClassOfRegion[region])
       ++held[region][pieces.Find(owner)];
   }
