@@ -38,6 +38,8 @@ BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>
   // alone there), in their order, so the faces come in the same order as over the whole mesh.
   std::vector<Tet> tissueTets;
   std::vector<std::int64_t> tetOf;
+  tissueTets.reserve(tets.size());
+  tetOf.reserve(tets.size());
   for (std::size_t t = 0; t < tets.size(); ++t)
   {
     if (this->Tissues.count(labels[t]))

@@ -43,17 +43,20 @@ StepOutcome GuardedStep(const TetMesh& mesh, const std::vector<Eigen::Vector3d>&
 {
   trial.resize(x.size());
   share.assign(x.size(), 1.0);
-  std::vector<char> moved(x.size());
+  std::vector<char> moved(x.size()), spoilt(x.size(), 0);
   for (int round = 0; round < 50; ++round)
   {
     if (!keepGoing())
     {
       return StepOutcome::Aborted;
     }
+    // Only tets with a point that moved since the last check, or that were spoilt then, can
+    // have changed: the rest satisfied the bound when checked.
     for (std::size_t p = 0; p < x.size(); ++p)
     {
-      trial[p] = x[p] + share[p] * step(p);
-      moved[p] = trial[p] != x[p];
+      const Eigen::Vector3d next = x[p] + share[p] * step(p);
+      moved[p] = spoilt[p] || next != (round == 0 ? x[p] : trial[p]);
+      trial[p] = next;
     }
     const std::vector<std::int64_t> bad = BadTets(mesh, trial, bound, threads, &moved);
     if (bad.empty())
@@ -62,10 +65,11 @@ StepOutcome GuardedStep(const TetMesh& mesh, const std::vector<Eigen::Vector3d>&
       {
         return keepGoing() ? StepOutcome::Made : StepOutcome::Aborted;
       }
+      std::fill(spoilt.begin(), spoilt.end(), 0);
       continue; // held for fidelity: try again with those vertices in place
     }
     // Once per round for each vertex, however many spoilt tets it has.
-    std::vector<char> spoilt(x.size(), 0);
+    std::fill(spoilt.begin(), spoilt.end(), 0);
     for (const std::int64_t t : bad)
     {
       for (const PointId p : mesh.Tets[t])
