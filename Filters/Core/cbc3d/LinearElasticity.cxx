@@ -1,6 +1,7 @@
 #include "cbc3d/LinearElasticity.h"
 
 #include "cbc3d/Parallel.h"
+#include "cbc3d/PointTets.h"
 
 #include <Eigen/Dense>
 
@@ -64,28 +65,32 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
   // 144 triplets per tet needed 16 bytes per triplet: 1.5 GB on a 650k-tet mesh.) That takes
   // seconds on such a mesh: a stop request is looked for between the steps and the batches.
   const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
-  std::vector<std::vector<PointId>> neighbours(n);
-  for (std::int64_t p = 0; p < n; ++p)
-  {
-    neighbours[p].push_back(p);
-  }
-  for (const Tet& tet : mesh.Tets)
-    for (int a = 0; a < 4; ++a)
-      for (int b = 0; b < 4; ++b)
-        if (a != b)
-          neighbours[tet[a]].push_back(tet[b]);
-  if (!KeepGoing(progress, 0.1))
-  {
-    return {};
-  }
+  // Point p's neighbours (itself included), ascending, are neighbours[rowStart[p]..rowStart[p+1]).
   std::vector<std::int64_t> rowStart(n + 1, 0); // in blocks
-  for (std::int64_t p = 0; p < n; ++p)
+  std::vector<PointId> neighbours;
   {
-    auto& list = neighbours[p];
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-    rowStart[p + 1] = rowStart[p] + static_cast<std::int64_t>(list.size());
+    const PointTets around(mesh.Tets, static_cast<std::size_t>(n));
+    if (!KeepGoing(progress, 0.1))
+    {
+      return {};
+    }
+    std::vector<PointId> list;
+    for (std::int64_t p = 0; p < n; ++p)
+    {
+      list.clear();
+      for (std::int64_t i = around.Start[p]; i < around.Start[p + 1]; ++i)
+        for (const PointId q : mesh.Tets[around.Tets[i]])
+          list.push_back(q);
+      list.push_back(p); // a point in no tet still has its own block
+      std::sort(list.begin(), list.end());
+      list.erase(std::unique(list.begin(), list.end()), list.end());
+      neighbours.insert(neighbours.end(), list.begin(), list.end());
+      rowStart[p + 1] = static_cast<std::int64_t>(neighbours.size());
+    }
   }
+  auto neighboursOf = [&](PointId p) {
+    return std::make_pair(neighbours.begin() + rowStart[p], neighbours.begin() + rowStart[p + 1]);
+  };
   if (!KeepGoing(progress, 0.2))
   {
     return {};
@@ -108,9 +113,9 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
       const std::int64_t first = 9 * rowStart[p] + 3 * (rowStart[p + 1] - rowStart[p]) * c;
       outer[column] = static_cast<int>(first);
       std::int64_t k = first;
-      for (const PointId q : neighbours[p])
+      for (auto [q, last] = neighboursOf(p); q != last; ++q)
         for (int r = 0; r < 3; ++r)
-          inner[k++] = static_cast<int>(3 * q + r);
+          inner[k++] = static_cast<int>(3 * *q + r);
     }
   }
   outer[3 * n] = static_cast<int>(9 * blocks);
@@ -139,10 +144,10 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
       for (int b = 0; b < 4; ++b) // column point
       {
         const PointId p = tet[b];
-        const auto& list = neighbours[p];
+        const auto [first, last] = neighboursOf(p);
         for (int a = 0; a < 4; ++a) // row point
         {
-          const std::int64_t slot = std::lower_bound(list.begin(), list.end(), tet[a]) - list.begin();
+          const std::int64_t slot = std::lower_bound(first, last, tet[a]) - first;
           for (int c = 0; c < 3; ++c)
           {
             double* column = values + outer[3 * p + c] + 3 * slot;
