@@ -102,7 +102,7 @@ std::map<std::int32_t, TissueFidelity> MeasureFidelity(const LabelImage& image,
     }
   }
   componentInMesh.assign(components.Label.size(), 0);
-  for (std::size_t v = 0; v < image.Labels.size(); ++v)
+  for (const std::int64_t v : components.Voxels)
   {
     const std::int32_t component = components.ComponentOfVoxel[v];
     const std::int32_t owner = mesh.VoxelOwner[v];
@@ -150,7 +150,7 @@ std::map<std::int64_t, std::int32_t> PinComponents(const LabelImage& image,
   const std::size_t count = components.Label.size();
   std::vector<std::vector<std::int32_t>> fewHolders(count);
   std::map<std::int32_t, std::map<std::int32_t, std::int64_t>> missing; // component -> tet -> voxels
-  for (std::size_t v = 0; v < image.Labels.size(); ++v)
+  for (const std::int64_t v : components.Voxels)
   {
     const std::int32_t component = components.ComponentOfVoxel[v], owner = mesh.VoxelOwner[v];
     if (component < 0 || owner < 0 || IsSmall(components, component, minimumVoxels))
@@ -249,7 +249,7 @@ std::vector<char> MarkForFidelity(const LabelImage& image, const TissueComponent
       }
     }
   }
-  for (std::size_t v = 0; v < image.Labels.size(); ++v)
+  for (const std::int64_t v : components.Voxels)
   {
     const std::int32_t component = components.ComponentOfVoxel[v];
     if (component >= 0 && !componentInMesh[component] &&

@@ -74,6 +74,13 @@ TissueComponents FindTissueComponents(const LabelImage& image)
       result.Label.push_back(image.Labels[seed]);
       result.Size.push_back(size);
     });
+  for (std::size_t v = 0; v < result.ComponentOfVoxel.size(); ++v)
+  {
+    if (result.ComponentOfVoxel[v] >= 0)
+    {
+      result.Voxels.push_back(static_cast<std::int64_t>(v));
+    }
+  }
   return result;
 }
 

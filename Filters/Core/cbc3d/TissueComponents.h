@@ -14,6 +14,8 @@ struct TissueComponents
   std::vector<std::int32_t> ComponentOfVoxel; // -1 for background voxels
   std::vector<std::int32_t> Label;            // per component: its tissue label
   std::vector<std::int64_t> Size;             // per component: its voxel count
+  std::vector<std::int64_t> Voxels;           // every tissue voxel, ascending: loops over the
+                                              // tissue need not visit a mostly empty image
 };
 
 /// Labels the face-connected components of every tissue (a breadth-first flood fill).
