@@ -164,6 +164,162 @@ struct TissueRow
   cbc3d::SurfaceDistanceSummary Distances = { NaN, NaN, NaN, NaN, NaN };
   std::size_t DistanceCount = 0; // points behind the mean
 };
+
+// The two-sided distances between a tissue's surface vertices and its boundary voxel centres.
+void MeasureDistances(const cbc3d::TetMesh& mesh, const std::vector<cbc3d::PointId>& surface,
+  const std::vector<Eigen::Vector3d>& boundary, int threads, TissueRow& row)
+{
+  std::vector<Eigen::Vector3d> meshPoints;
+  meshPoints.reserve(surface.size());
+  for (const cbc3d::PointId id : surface)
+  {
+    meshPoints.push_back(mesh.Points[id]);
+  }
+  vtkNew<vtkPoints> meshStorage, imageStorage;
+  auto meshLocator = MakeLocator(meshPoints, meshStorage);
+  auto imageLocator = MakeLocator(boundary, imageStorage);
+  std::vector<double> meshToImage = NearestDistances(meshPoints, imageLocator, imageStorage, threads);
+  std::vector<double> imageToMesh = NearestDistances(boundary, meshLocator, meshStorage, threads);
+  row.DistanceCount = meshToImage.size() + imageToMesh.size();
+  row.Distances = cbc3d::SummarizeSurfaceDistances(meshToImage, imageToMesh);
+}
+
+// The whole mesh's counts and angle extremes.
+void AddOverallFields(vtkFieldData* fields, const cbc3d::DihedralSummary& all)
+{
+  namespace names = vtkCBC3DArrayNames;
+  const bool empty = all.Tets == 0;
+  AddFieldArray<vtkIdTypeArray>(fields, names::TetCount, std::vector<vtkIdType>{ all.Tets });
+  AddFieldArray<vtkIdTypeArray>(fields, names::InvertedTetCount, std::vector<vtkIdType>{ all.Inverted });
+  AddFieldArray<vtkIdTypeArray>(fields, names::SmallAngleTetCount, std::vector<vtkIdType>{ all.SmallAngle });
+  AddFieldArray<vtkIdTypeArray>(fields, names::LargeAngleTetCount, std::vector<vtkIdType>{ all.LargeAngle });
+  AddFieldArray<vtkDoubleArray>(fields, names::MinDihedralAngle, std::vector<double>{ empty ? NaN : all.MinDegrees });
+  AddFieldArray<vtkDoubleArray>(fields, names::MaxDihedralAngle, std::vector<double>{ empty ? NaN : all.MaxDegrees });
+}
+
+double VolumeOf(const std::map<std::int32_t, double>& volumes, int label)
+{
+  const auto found = volumes.find(label);
+  return found == volumes.end() ? 0.0 : found->second;
+}
+
+// One value per tissue row for counts, angles and volumes; with the image, its volumes and the
+// distances, per tissue and for the whole mesh.
+void AddTissueFields(vtkFieldData* fields, const std::vector<TissueRow>& rows,
+  const std::map<std::int32_t, double>& meshVolumes, const std::map<std::int32_t, double>* imageVolumes)
+{
+  namespace names = vtkCBC3DArrayNames;
+  std::vector<int> labels;
+  std::vector<vtkIdType> tets, inverted, small, large;
+  std::vector<double> minima, maxima, hausdorff, meshToImage, imageToMesh, hausdorff95, mean, volume, imageVolume;
+  double meshHausdorff = rows.empty() ? NaN : 0.0, meshHausdorff95 = meshHausdorff;
+  double distanceSum = 0.0;
+  std::size_t distanceCount = 0;
+  for (const TissueRow& row : rows)
+  {
+    labels.push_back(row.Label);
+    tets.push_back(row.Angles.Tets);
+    inverted.push_back(row.Angles.Inverted);
+    small.push_back(row.Angles.SmallAngle);
+    large.push_back(row.Angles.LargeAngle);
+    minima.push_back(row.Angles.MinDegrees);
+    maxima.push_back(row.Angles.MaxDegrees);
+    volume.push_back(VolumeOf(meshVolumes, row.Label));
+    imageVolume.push_back(imageVolumes ? VolumeOf(*imageVolumes, row.Label) : 0.0);
+    const cbc3d::SurfaceDistanceSummary& d = row.Distances;
+    hausdorff.push_back(d.Hausdorff);
+    meshToImage.push_back(d.AToB);
+    imageToMesh.push_back(d.BToA);
+    hausdorff95.push_back(d.Percentile95);
+    mean.push_back(d.Mean);
+    // NaN (a tissue on one side only) must win over any finite distance.
+    meshHausdorff = std::isnan(d.Hausdorff) ? NaN : std::max(meshHausdorff, d.Hausdorff);
+    meshHausdorff95 = std::isnan(d.Percentile95) ? NaN : std::max(meshHausdorff95, d.Percentile95);
+    distanceSum += std::isnan(d.Mean) ? NaN : d.Mean * static_cast<double>(row.DistanceCount);
+    distanceCount += row.DistanceCount;
+  }
+  AddFieldArray<vtkIntArray>(fields, names::TissueLabel, labels);
+  AddFieldArray<vtkIdTypeArray>(fields, names::TissueTetCount, tets);
+  AddFieldArray<vtkIdTypeArray>(fields, names::TissueInvertedTetCount, inverted);
+  AddFieldArray<vtkIdTypeArray>(fields, names::TissueSmallAngleTetCount, small);
+  AddFieldArray<vtkIdTypeArray>(fields, names::TissueLargeAngleTetCount, large);
+  AddFieldArray<vtkDoubleArray>(fields, names::TissueMinDihedralAngle, minima);
+  AddFieldArray<vtkDoubleArray>(fields, names::TissueMaxDihedralAngle, maxima);
+  AddFieldArray<vtkDoubleArray>(fields, names::TissueVolume, volume);
+  if (imageVolumes)
+  {
+    AddFieldArray<vtkDoubleArray>(fields, names::TissueImageVolume, imageVolume);
+    AddFieldArray<vtkDoubleArray>(fields, names::HausdorffDistance, std::vector<double>{ meshHausdorff });
+    AddFieldArray<vtkDoubleArray>(fields, names::HausdorffDistance95, std::vector<double>{ meshHausdorff95 });
+    AddFieldArray<vtkDoubleArray>(fields, names::MeanSurfaceDistance,
+      std::vector<double>{ distanceCount ? distanceSum / double(distanceCount) : NaN });
+    AddFieldArray<vtkDoubleArray>(fields, names::TissueHausdorffDistance, hausdorff);
+    AddFieldArray<vtkDoubleArray>(fields, names::TissueMeshToImageDistance, meshToImage);
+    AddFieldArray<vtkDoubleArray>(fields, names::TissueImageToMeshDistance, imageToMesh);
+    AddFieldArray<vtkDoubleArray>(fields, names::TissueHausdorffDistance95, hausdorff95);
+    AddFieldArray<vtkDoubleArray>(fields, names::TissueMeanSurfaceDistance, mean);
+  }
+}
+// A row per tissue of the mesh, and of the image when there is one (`image` may be null);
+// false when the user stopped the filter.
+bool MeasureTissues(vtkCBC3DMeshQuality* filter, const cbc3d::TetMesh& mesh,
+  const cbc3d::QualitySummary& summary, const cbc3d::LabelImage* image, std::vector<TissueRow>& rows)
+{
+  std::set<int> labels;
+  for (const auto& entry : summary.Tissues)
+  {
+    labels.insert(entry.first);
+  }
+  std::map<std::int32_t, std::vector<cbc3d::PointId>> surface;
+  std::map<std::int32_t, std::vector<Eigen::Vector3d>> boundary;
+  if (image)
+  {
+    surface = cbc3d::TissueSurfaceVertices(mesh);
+    boundary = cbc3d::TissueBoundaryVoxelCentres(*image, filter->GetNumberOfThreads());
+    for (const auto& entry : boundary)
+    {
+      labels.insert(entry.first);
+    }
+  }
+  filter->UpdateProgress(0.5);
+
+  double done = 0.0;
+  for (const int label : labels)
+  {
+    TissueRow row;
+    row.Label = label;
+    const auto angles = summary.Tissues.find(label);
+    if (angles != summary.Tissues.end())
+    {
+      row.Angles = angles->second;
+    }
+    else
+    {
+      row.Angles.MinDegrees = row.Angles.MaxDegrees = NaN;
+    }
+    const auto meshSide = surface.find(label);
+    const auto imageSide = boundary.find(label);
+    if (image && (meshSide == surface.end() || imageSide == boundary.end()))
+    {
+      vtkWarningWithObjectMacro(filter, << "tissue " << label << " is in the "
+                      << (meshSide == surface.end() ? "image but not in the mesh"
+                                                    : "mesh but not in the image")
+                      << ": its distances are NaN");
+    }
+    else if (image)
+    {
+      MeasureDistances(mesh, meshSide->second, imageSide->second, filter->GetNumberOfThreads(), row);
+    }
+    rows.push_back(row);
+    done += 1.0;
+    filter->UpdateProgress(0.5 + 0.5 * done / static_cast<double>(labels.size()));
+    if (filter->CheckAbort())
+    {
+      return false;
+    }
+  }
+  return true;
+}
 } // namespace
 
 vtkCBC3DMeshQuality::vtkCBC3DMeshQuality()
@@ -195,150 +351,25 @@ int vtkCBC3DMeshQuality::RequestData(
     cbc3d::SummarizeQuality(mesh, this->NumberOfThreads, &perTet);
   this->UpdateProgress(0.3);
 
-  std::set<int> labels;
-  for (const auto& entry : summary.Tissues)
-  {
-    labels.insert(entry.first);
-  }
-  std::map<std::int32_t, std::vector<cbc3d::PointId>> surface;
-  std::map<std::int32_t, std::vector<Eigen::Vector3d>> boundary;
-  if (withImage)
-  {
-    surface = cbc3d::TissueSurfaceVertices(mesh);
-    boundary = cbc3d::TissueBoundaryVoxelCentres(*image, this->NumberOfThreads);
-    for (const auto& entry : boundary)
-    {
-      labels.insert(entry.first);
-    }
-  }
-  this->UpdateProgress(0.5);
-
   std::vector<TissueRow> rows;
-  double done = 0.0;
-  for (const int label : labels)
+  if (!MeasureTissues(this, mesh, summary, image.get(), rows))
   {
-    TissueRow row;
-    row.Label = label;
-    const auto angles = summary.Tissues.find(label);
-    if (angles != summary.Tissues.end())
-    {
-      row.Angles = angles->second;
-    }
-    else
-    {
-      row.Angles.MinDegrees = row.Angles.MaxDegrees = NaN;
-    }
-    if (withImage)
-    {
-      const auto meshSide = surface.find(label);
-      const auto imageSide = boundary.find(label);
-      if (meshSide == surface.end() || imageSide == boundary.end())
-      {
-        vtkWarningMacro(<< "tissue " << label << " is in the "
-                        << (meshSide == surface.end() ? "image but not in the mesh"
-                                                      : "mesh but not in the image")
-                        << ": its distances are NaN");
-      }
-      else
-      {
-        std::vector<Eigen::Vector3d> meshPoints;
-        meshPoints.reserve(meshSide->second.size());
-        for (const cbc3d::PointId id : meshSide->second)
-        {
-          meshPoints.push_back(mesh.Points[id]);
-        }
-        vtkNew<vtkPoints> meshStorage, imageStorage;
-        auto meshLocator = MakeLocator(meshPoints, meshStorage);
-        auto imageLocator = MakeLocator(imageSide->second, imageStorage);
-        std::vector<double> meshToImage =
-          NearestDistances(meshPoints, imageLocator, imageStorage, this->NumberOfThreads);
-        std::vector<double> imageToMesh =
-          NearestDistances(imageSide->second, meshLocator, meshStorage, this->NumberOfThreads);
-        row.DistanceCount = meshToImage.size() + imageToMesh.size();
-        row.Distances = cbc3d::SummarizeSurfaceDistances(meshToImage, imageToMesh);
-      }
-    }
-    rows.push_back(row);
-    done += 1.0;
-    this->UpdateProgress(0.5 + 0.5 * done / static_cast<double>(labels.size()));
-    if (this->CheckAbort())
-    {
-      output->Initialize();
-      return 1;
-    }
+    output->Initialize();
+    return 1; // stopped by the user
   }
 
   output->ShallowCopy(input);
   AddCellArray(output, vtkCBC3DArrayNames::MinDihedralAngle, perTet.MinDegrees);
   AddCellArray(output, vtkCBC3DArrayNames::MaxDihedralAngle, perTet.MaxDegrees);
-
-  namespace names = vtkCBC3DArrayNames;
   vtkNew<vtkFieldData> fields;
   fields->DeepCopy(input->GetFieldData());
-  const cbc3d::DihedralSummary& all = summary.Overall;
-  const bool empty = all.Tets == 0;
-  AddFieldArray<vtkIdTypeArray>(fields, names::TetCount, std::vector<vtkIdType>{ all.Tets });
-  AddFieldArray<vtkIdTypeArray>(fields, names::InvertedTetCount, std::vector<vtkIdType>{ all.Inverted });
-  AddFieldArray<vtkIdTypeArray>(fields, names::SmallAngleTetCount, std::vector<vtkIdType>{ all.SmallAngle });
-  AddFieldArray<vtkIdTypeArray>(fields, names::LargeAngleTetCount, std::vector<vtkIdType>{ all.LargeAngle });
-  AddFieldArray<vtkDoubleArray>(fields, names::MinDihedralAngle, std::vector<double>{ empty ? NaN : all.MinDegrees });
-  AddFieldArray<vtkDoubleArray>(fields, names::MaxDihedralAngle, std::vector<double>{ empty ? NaN : all.MaxDegrees });
-
-  std::vector<int> tissueLabels;
-  std::vector<vtkIdType> tets, inverted, small, large;
-  std::vector<double> minima, maxima, hausdorff, meshToImage, imageToMesh, hausdorff95, mean, volume, imageVolume;
-  const auto meshVolumes = cbc3d::TissueMeshVolumes(mesh);
+  AddOverallFields(fields, summary.Overall);
   const auto imageVolumes = withImage ? cbc3d::TissueImageVolumes(*image) : std::map<std::int32_t, double>();
-  auto volumeOf = [](const std::map<std::int32_t, double>& volumes, int label) {
-    const auto found = volumes.find(label);
-    return found == volumes.end() ? 0.0 : found->second;
-  };
-  double meshHausdorff = rows.empty() ? NaN : 0.0, meshHausdorff95 = meshHausdorff;
-  double distanceSum = 0.0;
-  std::size_t distanceCount = 0;
+  AddTissueFields(fields, rows, cbc3d::TissueMeshVolumes(mesh), withImage ? &imageVolumes : nullptr);
+  std::vector<int> tissueLabels;
   for (const TissueRow& row : rows)
   {
     tissueLabels.push_back(row.Label);
-    tets.push_back(row.Angles.Tets);
-    inverted.push_back(row.Angles.Inverted);
-    small.push_back(row.Angles.SmallAngle);
-    large.push_back(row.Angles.LargeAngle);
-    minima.push_back(row.Angles.MinDegrees);
-    maxima.push_back(row.Angles.MaxDegrees);
-    volume.push_back(volumeOf(meshVolumes, row.Label));
-    imageVolume.push_back(volumeOf(imageVolumes, row.Label));
-    const cbc3d::SurfaceDistanceSummary& d = row.Distances;
-    hausdorff.push_back(d.Hausdorff);
-    meshToImage.push_back(d.AToB);
-    imageToMesh.push_back(d.BToA);
-    hausdorff95.push_back(d.Percentile95);
-    mean.push_back(d.Mean);
-    // NaN (a tissue on one side only) must win over any finite distance.
-    meshHausdorff = std::isnan(d.Hausdorff) ? NaN : std::max(meshHausdorff, d.Hausdorff);
-    meshHausdorff95 = std::isnan(d.Percentile95) ? NaN : std::max(meshHausdorff95, d.Percentile95);
-    distanceSum += std::isnan(d.Mean) ? NaN : d.Mean * static_cast<double>(row.DistanceCount);
-    distanceCount += row.DistanceCount;
-  }
-  AddFieldArray<vtkIntArray>(fields, names::TissueLabel, tissueLabels);
-  AddFieldArray<vtkIdTypeArray>(fields, names::TissueTetCount, tets);
-  AddFieldArray<vtkIdTypeArray>(fields, names::TissueInvertedTetCount, inverted);
-  AddFieldArray<vtkIdTypeArray>(fields, names::TissueSmallAngleTetCount, small);
-  AddFieldArray<vtkIdTypeArray>(fields, names::TissueLargeAngleTetCount, large);
-  AddFieldArray<vtkDoubleArray>(fields, names::TissueMinDihedralAngle, minima);
-  AddFieldArray<vtkDoubleArray>(fields, names::TissueMaxDihedralAngle, maxima);
-  AddFieldArray<vtkDoubleArray>(fields, names::TissueVolume, volume);
-  if (withImage)
-  {
-    AddFieldArray<vtkDoubleArray>(fields, names::TissueImageVolume, imageVolume);
-    AddFieldArray<vtkDoubleArray>(fields, names::HausdorffDistance, std::vector<double>{ meshHausdorff });
-    AddFieldArray<vtkDoubleArray>(fields, names::HausdorffDistance95, std::vector<double>{ meshHausdorff95 });
-    AddFieldArray<vtkDoubleArray>(fields, names::MeanSurfaceDistance,
-      std::vector<double>{ distanceCount ? distanceSum / double(distanceCount) : NaN });
-    AddFieldArray<vtkDoubleArray>(fields, names::TissueHausdorffDistance, hausdorff);
-    AddFieldArray<vtkDoubleArray>(fields, names::TissueMeshToImageDistance, meshToImage);
-    AddFieldArray<vtkDoubleArray>(fields, names::TissueImageToMeshDistance, imageToMesh);
-    AddFieldArray<vtkDoubleArray>(fields, names::TissueHausdorffDistance95, hausdorff95);
-    AddFieldArray<vtkDoubleArray>(fields, names::TissueMeanSurfaceDistance, mean);
   }
   const cbc3d::ImageTopology imageTopology =
     withImage ? cbc3d::MeasureImageTopology(*image, this->NumberOfThreads) : cbc3d::ImageTopology();
