@@ -8,54 +8,78 @@ namespace cbc3d
 namespace
 {
 // Labels the 6-connected components of the voxels of the box [lower, upper] (inclusive) for
-// which `inRegion` holds, linking face-neighbours for which `same` holds (a breadth-first flood
-// fill). Calls `found(seed, size, touchesBoxFace)` once per component, in the order of their
-// first voxel; voxels outside the box stay -1.
+// which `inRegion` holds, linking face-neighbours for which `same` holds. Calls
+// `found(seed, size, touchesBoxFace)` once per component, in the order of their first voxel;
+// voxels outside the box stay -1. The flood moves by runs along x, so it costs a division per
+// run, not three per voxel.
 template <typename InRegion, typename Same, typename Found>
 std::vector<std::int32_t> FloodComponents(const LabelImage& image, const std::array<int, 3>& lower,
   const std::array<int, 3>& upper, InRegion inRegion, Same same, Found found)
 {
   std::vector<std::int32_t> componentOfVoxel(image.Labels.size(), -1);
   const auto& d = image.Dimensions;
-  const std::int64_t strides[3] = { 1, d[0], std::int64_t(d[0]) * d[1] };
-  std::vector<std::int64_t> queue;
+  const std::int64_t row = d[0], slice = std::int64_t(d[0]) * d[1];
+  struct Run
+  {
+    std::int64_t J, K;
+    std::int64_t First, Last; // voxel indices of the run's ends, inclusive
+  };
+  std::vector<Run> queue;
   std::int32_t count = 0;
+  std::int64_t size = 0;
+  bool boxFace = false;
+  // Claims the unclaimed run through `voxel` (in row j, k) and queues it.
+  auto claimRun = [&](std::int64_t voxel, std::int64_t j, std::int64_t k) {
+    const std::int64_t rowStart = j * row + k * slice;
+    std::int64_t first = voxel, last = voxel;
+    componentOfVoxel[voxel] = count;
+    while (first - rowStart > lower[0] && componentOfVoxel[first - 1] < 0 && inRegion(first - 1) &&
+      same(first, first - 1))
+      componentOfVoxel[--first] = count;
+    while (last - rowStart < upper[0] && componentOfVoxel[last + 1] < 0 && inRegion(last + 1) &&
+      same(last, last + 1))
+      componentOfVoxel[++last] = count;
+    boxFace = boxFace || first - rowStart == lower[0] || last - rowStart == upper[0];
+    size += last - first + 1;
+    queue.push_back({ j, k, first, last });
+  };
   for (std::int64_t k = lower[2]; k <= upper[2]; ++k)
     for (std::int64_t j = lower[1]; j <= upper[1]; ++j)
       for (std::int64_t i = lower[0]; i <= upper[0]; ++i)
       {
-        const std::int64_t seed = i + j * strides[1] + k * strides[2];
+        const std::int64_t seed = i + j * row + k * slice;
         if (componentOfVoxel[seed] >= 0 || !inRegion(seed))
         {
           continue;
         }
-        componentOfVoxel[seed] = count;
-        queue.assign(1, seed);
-        bool boxFace = false;
+        queue.clear();
+        size = 0;
+        boxFace = false;
+        claimRun(seed, j, k);
         for (std::size_t next = 0; next < queue.size(); ++next)
         {
-          const std::int64_t voxel = queue[next];
-          const std::int64_t ijk[3] = { voxel % d[0], (voxel / d[0]) % d[1], voxel / strides[2] };
-          for (int axis = 0; axis < 3; ++axis)
+          const Run run = queue[next];
+          const std::int64_t neighbours[4][2] = { { run.J - 1, run.K }, { run.J + 1, run.K },
+            { run.J, run.K - 1 }, { run.J, run.K + 1 } };
+          for (const auto& [nj, nk] : neighbours)
           {
-            for (const int step : { -1, 1 })
+            if (nj < lower[1] || nj > upper[1] || nk < lower[2] || nk > upper[2])
             {
-              const std::int64_t moved = ijk[axis] + step;
-              if (moved < lower[axis] || moved > upper[axis])
-              {
-                boxFace = true;
-                continue;
-              }
-              const std::int64_t neighbour = voxel + step * strides[axis];
+              boxFace = true;
+              continue;
+            }
+            const std::int64_t offset = (nj - run.J) * row + (nk - run.K) * slice;
+            for (std::int64_t voxel = run.First; voxel <= run.Last; ++voxel)
+            {
+              const std::int64_t neighbour = voxel + offset;
               if (componentOfVoxel[neighbour] < 0 && inRegion(neighbour) && same(voxel, neighbour))
               {
-                componentOfVoxel[neighbour] = count;
-                queue.push_back(neighbour);
+                claimRun(neighbour, nj, nk);
               }
             }
           }
         }
-        found(seed, static_cast<std::int64_t>(queue.size()), boxFace);
+        found(seed, size, boxFace);
         ++count;
       }
   return componentOfVoxel;
