@@ -43,6 +43,39 @@ struct LabelledMesh
   std::vector<std::int32_t> VoxelOwner; // final tet owning each voxel centre, or -1
 };
 
+// Sets every voxel's owner to none. The first time the whole image; after that only the index
+// box of the mesh's points, the only voxels a tet can have claimed (the points only grow in
+// number, never beyond the lattice), so a padded image does not cost a whole-image fill a pass.
+void ClearVoxelOwners(const LabelImage& image, const std::vector<Eigen::Vector3d>& points,
+  std::vector<std::int32_t>& voxelOwner)
+{
+  if (voxelOwner.size() != image.Labels.size())
+  {
+    voxelOwner.assign(image.Labels.size(), -1);
+    return;
+  }
+  Eigen::Vector3d lower = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d upper = -lower;
+  for (const Eigen::Vector3d& point : points)
+  {
+    const Eigen::Vector3d index = image.WorldToIndex(point);
+    lower = lower.cwiseMin(index);
+    upper = upper.cwiseMax(index);
+  }
+  std::array<std::int64_t, 3> first, last;
+  for (int a = 0; a < 3; ++a)
+  {
+    first[a] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(lower[a])) - 1, 0, image.Dimensions[a] - 1);
+    last[a] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::ceil(upper[a])) + 1, 0, image.Dimensions[a] - 1);
+  }
+  for (std::int64_t k = first[2]; k <= last[2]; ++k)
+    for (std::int64_t j = first[1]; j <= last[1]; ++j)
+    {
+      std::int32_t* row = voxelOwner.data() + image.VoxelIndex(0, int(j), int(k));
+      std::fill(row + first[0], row + last[0] + 1, -1);
+    }
+}
+
 // Returns false when `keepGoing` (polled from thread 0) asked to stop.
 bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threads,
   LabelledMesh& mesh, const std::function<bool()>& keepGoing)
@@ -56,7 +89,7 @@ bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threa
   mesh.Counts.resize(count);
   mesh.HoldsVoxelCentres.assign(count, 0);
   mesh.Labels.assign(count, NoLabel);
-  mesh.VoxelOwner.assign(image.Labels.size(), -1);
+  ClearVoxelOwners(image, hierarchy.Points(), mesh.VoxelOwner);
   const auto& points = hierarchy.Points();
 #pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(threads))
   for (std::int64_t t = 0; t < count; ++t)
