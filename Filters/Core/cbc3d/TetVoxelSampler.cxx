@@ -140,6 +140,47 @@ struct IndexSpaceTet
   }
 };
 
+// The inside samples of one row of the sampling grid: i from First to Last (inclusive; empty
+// when First > Last). Along a row each barycentric condition of IndexSpaceTet::Contains holds on
+// a half-line, so the inside samples are one run: its ends are estimated from the four linear
+// coordinates, then settled by the exact test on the few samples around each end.
+struct RowRun
+{
+  std::int64_t First = 0, Last = -1;
+};
+
+RowRun InsideRun(const IndexSpaceTet& tet, const Eigen::Vector3d& rowStart, const Eigen::Vector3d& rowStep,
+  std::int64_t first, std::int64_t last)
+{
+  const Eigen::Vector4d value(1.0 - rowStart.sum(), rowStart[0], rowStart[1], rowStart[2]);
+  const Eigen::Vector4d slope(-rowStep.sum(), rowStep[0], rowStep[1], rowStep[2]);
+  // A looser bound than Contains's tolerance, so the estimate never cuts an inside sample.
+  constexpr double loose = 1e-6;
+  double lower = 0.0, upper = double(last - first);
+  for (int c = 0; c < 4; ++c)
+  {
+    if (slope[c] > 0.0)
+      lower = std::max(lower, (-loose - value[c]) / slope[c]);
+    else if (slope[c] < 0.0)
+      upper = std::min(upper, (-loose - value[c]) / slope[c]);
+    else if (value[c] < -loose)
+      return {};
+  }
+  if (!(lower <= upper + 2.0))
+  {
+    return {};
+  }
+  auto inside = [&](std::int64_t i) { return tet.Contains(rowStart + double(i - first) * rowStep); };
+  RowRun run;
+  run.First = std::max(first, first + static_cast<std::int64_t>(std::floor(lower)) - 2);
+  run.Last = std::min(last, first + static_cast<std::int64_t>(std::ceil(upper)) + 2);
+  while (run.First <= run.Last && !inside(run.First))
+    ++run.First;
+  while (run.Last >= run.First && !inside(run.Last))
+    --run.Last;
+  return run;
+}
+
 // Samples each voxel at the centres of a subdivision^3 sub-grid; returns the samples taken.
 std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int subdivision,
   LabelCounts& counts, std::int32_t owner, std::int32_t* voxelOwner)
@@ -147,48 +188,50 @@ std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int s
   const std::int64_t weight = VoxelWeight / (std::int64_t(subdivision) * subdivision * subdivision);
   const double step = 1.0 / subdivision;
   const double offset = 0.5 * step - 0.5; // 0 at subdivision 1: the voxel centres
-  std::array<std::int64_t, 3> first, last;
+  std::array<std::int64_t, 3> first, last, inImageFirst, inImageLast;
   for (int a = 0; a < 3; ++a)
   {
     first[a] = static_cast<std::int64_t>(std::ceil((tet.Lower[a] - offset) / step - 1e-9));
     last[a] = static_cast<std::int64_t>(std::floor((tet.Upper[a] - offset) / step + 1e-9));
+    // The samples inside the image along this axis: centres from -0.5 to dimension - 0.5
+    // (exact: the step is a power of two).
+    inImageFirst[a] = static_cast<std::int64_t>(std::ceil((-0.5 - offset) / step));
+    inImageLast[a] = static_cast<std::int64_t>(std::ceil((image.Dimensions[a] - 0.5 - offset) / step)) - 1;
   }
   // Beyond the image is background, as the image border is for boundary voxels: a tet that
   // reaches out of a field of view that cuts the tissue counts what lies outside.
   const bool outsideCounts = !image.BackgroundLabels.empty();
   const std::int32_t outside = outsideCounts ? image.BackgroundLabels.front() : 0;
-  auto inImage = [&](double x, int a) { return x >= -0.5 && x < image.Dimensions[a] - 0.5; };
+  auto addOutside = [&](std::int64_t n) -> std::int64_t {
+    if (!outsideCounts || n <= 0)
+    {
+      return 0;
+    }
+    counts.Add(outside, weight * n);
+    return n;
+  };
+  const Eigen::Vector3d rowStep = tet.ToBarycentric.col(0) * step;
   std::int64_t samples = 0;
-  Eigen::Vector3d point;
   for (std::int64_t k = first[2]; k <= last[2]; ++k)
   {
-    point[2] = offset + k * step;
     for (std::int64_t j = first[1]; j <= last[1]; ++j)
     {
-      point[1] = offset + j * step;
-      point[0] = offset + first[0] * step;
-      // Along a row the barycentric coordinates change by a constant step.
-      Eigen::Vector3d b = tet.Barycentric(point);
-      const Eigen::Vector3d rowStep = tet.ToBarycentric.col(0) * step;
-      for (std::int64_t i = first[0]; i <= last[0]; ++i, b += rowStep)
+      const Eigen::Vector3d rowStart = tet.Barycentric(Eigen::Vector3d(offset + first[0] * step, offset + j * step, offset + k * step));
+      const RowRun run = InsideRun(tet, rowStart, rowStep, first[0], last[0]);
+      if (run.First > run.Last)
       {
-        point[0] = offset + i * step;
-        if (!tet.Contains(b))
-        {
-          continue;
-        }
-        if (!(inImage(point[0], 0) && inImage(point[1], 1) && inImage(point[2], 2)))
-        {
-          if (outsideCounts)
-          {
-            counts.Add(outside, weight);
-            ++samples;
-          }
-          continue;
-        }
-        const int vi = std::clamp(static_cast<int>(std::lround(point[0])), 0, image.Dimensions[0] - 1);
-        const int vj = std::clamp(static_cast<int>(std::lround(point[1])), 0, image.Dimensions[1] - 1);
-        const int vk = std::clamp(static_cast<int>(std::lround(point[2])), 0, image.Dimensions[2] - 1);
+        continue;
+      }
+      const bool rowInImage = j >= inImageFirst[1] && j <= inImageLast[1] && k >= inImageFirst[2] && k <= inImageLast[2];
+      const std::int64_t from = rowInImage ? std::max(run.First, inImageFirst[0]) : run.Last + 1;
+      const std::int64_t to = rowInImage ? std::min(run.Last, inImageLast[0]) : run.Last;
+      // In sample order: those before the image, those in it, those after.
+      samples += addOutside(std::min(from, run.Last + 1) - run.First);
+      const int vj = std::clamp(static_cast<int>(std::lround(offset + j * step)), 0, image.Dimensions[1] - 1);
+      const int vk = std::clamp(static_cast<int>(std::lround(offset + k * step)), 0, image.Dimensions[2] - 1);
+      for (std::int64_t i = from; i <= to; ++i)
+      {
+        const int vi = std::clamp(static_cast<int>(std::lround(offset + i * step)), 0, image.Dimensions[0] - 1);
         counts.Add(image.LabelAt(vi, vj, vk), weight);
         if (voxelOwner && subdivision == 1)
         {
@@ -196,6 +239,7 @@ std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int s
         }
         ++samples;
       }
+      samples += addOutside(run.Last - std::max(to, from - 1));
     }
   }
   return samples;
