@@ -1,6 +1,8 @@
 #include "cbc3d/TetVoxelSampler.h"
 
 #include <Eigen/LU>
+
+#include <algorithm>
 #include <gtest/gtest.h>
 
 #include "TestImages.h"
@@ -121,4 +123,48 @@ TEST(TetVoxelSampler, BeyondTheImageCountsAsBackground)
   EXPECT_TRUE(counts.Majority(image, label));
   EXPECT_EQ(label, 0);
   EXPECT_EQ(counts.TissueTotal(image), 0);
+}
+
+TEST(TetVoxelSampler, TetsFarLargerThanTheImageCountEverySampleOnce)
+{
+  // The six tets of the cube [-20, 24)^3 around a 6^3 image of tissue 7: rows beyond the image
+  // on every side, and rows through it, are counted per run. As in the cube above, the tets
+  // share out the cube's 44^3 lattice points once; the 216 in the image are tissue, the rest
+  // background.
+  const cbc3d::LabelImage image = Cube(6, 7);
+  auto corner = [](int c) {
+    return Eigen::Vector3d(c & 1 ? 24 : -20, c & 2 ? 24 : -20, c & 4 ? 24 : -20);
+  };
+  const int tets[6][4] = { { 0, 1, 3, 7 }, { 0, 3, 2, 7 }, { 0, 2, 6, 7 }, { 0, 6, 4, 7 },
+    { 0, 4, 5, 7 }, { 0, 5, 1, 7 } };
+  std::vector<std::int32_t> owner(image.Labels.size(), -1);
+  std::int64_t tissue = 0, background = 0;
+  for (int t = 0; t < 6; ++t)
+  {
+    cbc3d::LabelCounts counts;
+    EXPECT_EQ(cbc3d::SampleTetLabels(image, { corner(tets[t][0]), corner(tets[t][1]),
+      corner(tets[t][2]), corner(tets[t][3]) }, counts, t, owner.data()), 1);
+    tissue += counts.Of(7);
+    background += counts.Of(0);
+  }
+  EXPECT_EQ(tissue, 216 * cbc3d::VoxelWeight);
+  EXPECT_EQ(background, (44 * 44 * 44 - 216) * cbc3d::VoxelWeight);
+  EXPECT_EQ(std::count(owner.begin(), owner.end(), -1), 0); // every voxel has its one tet
+
+  // The same cube moved wholly to one side of the image along x (its rows through the image's
+  // y and z range end before the image, or start after it): all background.
+  for (const double shift : { -30.0, 30.0 })
+  {
+    std::int64_t total = 0;
+    for (int t = 0; t < 6; ++t)
+    {
+      cbc3d::LabelCounts counts;
+      const Eigen::Vector3d moved(shift, 0.0, 0.0);
+      cbc3d::SampleTetLabels(image, { corner(tets[t][0]) + moved, corner(tets[t][1]) + moved,
+        corner(tets[t][2]) + moved, corner(tets[t][3]) + moved }, counts);
+      EXPECT_EQ(counts.TissueTotal(image), 0);
+      total += counts.Of(0);
+    }
+    EXPECT_EQ(total, 44 * 44 * 44 * cbc3d::VoxelWeight) << shift;
+  }
 }
