@@ -19,6 +19,7 @@
 #include <memory>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace cbc3d
 {
@@ -69,13 +70,12 @@ class Registration
 {
 public:
   Registration(const TetMesh& mesh, const SurfaceSources& sources, const Matcher& matcher,
-    FidelityGuard& fidelity, const Eigen::SparseMatrix<double>& stiffness,
+    FidelityGuard& fidelity, Eigen::SparseMatrix<double> stiffness,
     const DeformationParams& params, double bound, double negligibleMove)
     : Mesh(mesh)
     , Sources(sources)
     , Match(matcher)
     , Fidelity(fidelity)
-    , Stiffness(stiffness)
     , Params(params)
     , Bound(bound)
     , NegligibleMove(negligibleMove)
@@ -84,15 +84,15 @@ public:
     , Search(mesh.Points.size())
     , Interior(mesh.Points.size(), 1)
     , Du(Eigen::VectorXd::Zero(stiffness.rows()))
-    , System(stiffness)
+    , System(std::move(stiffness))
   {
-    // Each step's system is the stiffness plus springs on its diagonal: same structure, so
-    // only the values are copied again, and the diagonal is found once.
+    // Each step's system is the stiffness plus springs on its diagonal: the matrix is kept
+    // once, and only its diagonal is written again for each step, from the stiffness's own.
     this->System.makeCompressed();
     for (Eigen::Index i = 0; i < this->System.rows(); ++i)
     {
       this->Diagonal.push_back(&this->System.coeffRef(i, i));
-      this->StiffnessDiagonal.push_back(stiffness.coeff(i, i));
+      this->StiffnessDiagonal.push_back(*this->Diagonal.back());
     }
     // (K + P) du = P d: K the stiffness, P the springs tying each matched source to its goal.
     // Conjugate gradients with a diagonal preconditioner, warm-started from the previous step.
@@ -228,8 +228,8 @@ private:
   double SpringLoads(const std::vector<Eigen::Vector3d>& x, const std::vector<Eigen::Vector3d>& goals,
     const std::vector<char>& matched, Eigen::VectorXd& rhs, Eigen::VectorXd& springs) const
   {
-    rhs = Eigen::VectorXd::Zero(this->Stiffness.rows());
-    springs = Eigen::VectorXd::Zero(this->Stiffness.rows());
+    rhs = Eigen::VectorXd::Zero(this->System.rows());
+    springs = Eigen::VectorXd::Zero(this->System.rows());
     const std::int64_t sourceCount = static_cast<std::int64_t>(this->Sources.Points.size());
     double moved = 0.0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : moved) num_threads(ThreadCount(this->Params.NumberOfThreads))
@@ -239,7 +239,7 @@ private:
       const double size = this->Sources.LocalSize[p];
       for (int c = 0; c < 3; ++c)
       {
-        springs[3 * p + c] = this->Params.Penalty * this->Stiffness.coeff(3 * p + c, 3 * p + c);
+        springs[3 * p + c] = this->Params.Penalty * this->StiffnessDiagonal[3 * p + c];
       }
       if (!matched[s])
       {
@@ -268,11 +268,9 @@ private:
   {
     // A faint anchor on every point keeps pieces of the mesh that no spring holds (a small
     // component with no match) in place, where the bare stiffness would let them float.
-    std::copy(this->Stiffness.valuePtr(), this->Stiffness.valuePtr() + this->Stiffness.nonZeros(),
-      this->System.valuePtr());
     for (std::size_t i = 0; i < this->Diagonal.size(); ++i)
     {
-      *this->Diagonal[i] += springs[i] + 1e-6 * this->StiffnessDiagonal[i];
+      *this->Diagonal[i] = this->StiffnessDiagonal[i] + (springs[i] + 1e-6 * this->StiffnessDiagonal[i]);
     }
     if (stops.Stopped(done))
     {
@@ -315,7 +313,6 @@ private:
   const SurfaceSources& Sources;
   const Matcher& Match;
   FidelityGuard& Fidelity;
-  const Eigen::SparseMatrix<double>& Stiffness;
   const DeformationParams& Params;
   const double Bound;          // the angle bound of every step (radians)
   const double NegligibleMove; // a rigid fit that moves no point farther ends its loop
@@ -323,7 +320,7 @@ private:
   std::vector<double> Reach, Search; // per point: when it is steered, and how far it looks
   std::vector<char> Interior;        // per point: not a source
   Eigen::VectorXd Du;                // the last elastic step (the next solve starts from it)
-  Eigen::SparseMatrix<double> System; // the stiffness with the last step's springs added
+  Eigen::SparseMatrix<double> System; // the stiffness, its diagonal with the last step's springs added
   std::vector<double*> Diagonal;      // System's diagonal entries
   std::vector<double> StiffnessDiagonal;
   Eigen::Isometry3d Placement = Eigen::Isometry3d::Identity(); // the rigid moves so far
@@ -403,14 +400,14 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   {
     return Status::Aborted();
   }
-  const Eigen::SparseMatrix<double> stiffness = AssembleStiffness(mesh, params.Materials,
+  Eigen::SparseMatrix<double> stiffness = AssembleStiffness(mesh, params.Materials,
     params.DefaultMaterial, threads, [&](double fraction) { return !stops.Stopped(0.07 + 0.03 * fraction); });
   if (stops.Stopped(0.1))
   {
     return Status::Aborted();
   }
   std::vector<Eigen::Vector3d>& x = out.Points;
-  Registration registration(mesh, sources, matcher, fidelity, stiffness, params, bound,
+  Registration registration(mesh, sources, matcher, fidelity, std::move(stiffness), params, bound,
     0.01 * image.Spacing.minCoeff());
   for (int iteration = 0; iteration < params.Iterations; ++iteration)
   {
