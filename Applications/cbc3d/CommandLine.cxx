@@ -1,6 +1,7 @@
 #include "CommandLine.h"
 
 #include "cbc3d/MeshExport.h"
+#include "cbc3d/Parallel.h"
 
 #include <algorithm>
 #include <cctype>
@@ -10,6 +11,10 @@
 
 namespace
 {
+// More deformation iterations than any image needs: each moves the surface at most one element
+// size, and the deformation stops once no vertex moves.
+constexpr int MaximumIterations = 1000;
+
 bool ParseDouble(const std::string& text, double& value)
 {
   char* end = nullptr;
@@ -124,7 +129,8 @@ Mesh a 3-D label image into a conforming multi-tissue tetrahedral mesh (CBC3D).
                       leaves them inscribed in the boundary, short of the volume)
   --iterations N      deformation iterations (default 5; 0 = no deformation)
   --background L      a label that is not tissue; repeat for several (default 0)
-  --threads N         threads (default 0 = all cores)
+  --threads N         threads, at most 1024 (default 0 = all cores); the mesh is
+                      the same, byte for byte, for any number
   --report FILE       write the figures as JSON
   --quiet             print nothing but errors
   -h, --help          this text
@@ -278,9 +284,10 @@ bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::
     {
       if (!value(text))
         return false;
-      if (!ParseInt(text, options.Iterations) || options.Iterations < 0)
+      if (!ParseInt(text, options.Iterations) || options.Iterations < 0 || options.Iterations > MaximumIterations)
       {
-        error = "--iterations must be a whole number of at least 0, not '" + text + "'";
+        error = "--iterations must be a whole number from 0 to " + std::to_string(MaximumIterations) +
+          " (deformation stops once nothing moves, long before), not '" + text + "'";
         return false;
       }
     }
@@ -305,9 +312,10 @@ bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::
     {
       if (!value(text))
         return false;
-      if (!ParseInt(text, options.Threads) || options.Threads < 0)
+      if (!ParseInt(text, options.Threads) || options.Threads < 0 || options.Threads > cbc3d::MaximumThreads)
       {
-        error = "--threads must be a whole number of at least 0, not '" + text + "'";
+        error = "--threads must be a whole number from 0 to " + std::to_string(cbc3d::MaximumThreads) +
+          " (0 = all cores), not '" + text + "'";
         return false;
       }
     }

@@ -340,6 +340,16 @@ Status ValidateInputs(const LabelImage& image, const TetMesh& mesh, const Deform
   }
   return Status::Ok();
 }
+
+double LargestMove(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to)
+{
+  double largest = 0.0;
+  for (std::size_t p = 0; p < from.size(); ++p)
+  {
+    largest = std::max(largest, (to[p] - from[p]).norm());
+  }
+  return largest;
+}
 } // namespace
 
 Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
@@ -399,10 +409,14 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   std::vector<Eigen::Vector3d>& x = out.Points;
   Registration registration(mesh, sources, matcher, fidelity, stiffness, params, bound,
     0.01 * image.Spacing.minCoeff());
+  // A huge iteration count ends once an iteration moves no vertex by a hundredth of a voxel.
+  const double stillMove = 0.01 * image.Spacing.minCoeff();
+  std::vector<Eigen::Vector3d> before;
   for (int iteration = 0; iteration < params.Iterations; ++iteration)
   {
     double moved = 0.0;
     std::size_t held = 0;
+    before = x;
     const StepOutcome outcome =
       registration.Iterate(x, 0.1 + 0.9 * double(iteration) / params.Iterations, stops, moved, held);
     if (outcome == StepOutcome::Aborted)
@@ -420,6 +434,11 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     if (stops.Stopped(0.1 + 0.9 * double(iteration + 1) / params.Iterations))
     {
       return Status::Aborted();
+    }
+    if (LargestMove(before, x) < stillMove)
+    {
+      result.StopReason = "converged: iteration " + std::to_string(iteration + 1) + " moved no vertex";
+      break;
     }
   }
   if (params.KeepVolumes && result.Iterations > 0)

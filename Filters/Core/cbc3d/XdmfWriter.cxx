@@ -1,6 +1,8 @@
 #include "cbc3d/XdmfWriter.h"
 
+#include "cbc3d/AtomicFile.h"
 #include "cbc3d/MeshExport.h"
+#include "cbc3d/PendingFiles.h"
 
 #include <hdf5.h>
 
@@ -227,34 +229,35 @@ Status WriteXdmf(const TaggedMesh& mesh, const std::string& path)
   if (mesh.Tets.empty())
     return Status::Error("the mesh has no tetrahedra to write");
   const std::string h5 = XdmfHeavyDataPath(path);
-  const std::string part = ".part-" + std::to_string(getpid());
-  const std::string xdmfPart = path + part, h5Part = h5 + part;
-  const auto fail = [&](const std::string& why) {
-    std::remove(xdmfPart.c_str());
-    std::remove(h5Part.c_str());
-    return Status::Error(why);
+  const std::string xdmfPart = TemporaryPath(path), h5Part = TemporaryPath(h5);
+  const int xdmfSlot = PendingFiles::Add(xdmfPart), h5Slot = PendingFiles::Add(h5Part);
+  const auto done = [&](const std::string& why) {
+    if (!why.empty())
+    {
+      std::remove(xdmfPart.c_str());
+      std::remove(h5Part.c_str());
+    }
+    PendingFiles::Forget(xdmfSlot);
+    PendingFiles::Forget(h5Slot);
+    return why.empty() ? Status::Ok() : Status::Error(why);
   };
 
   std::string error = WriteHeavyData(mesh, h5Part);
   if (!error.empty())
-    return fail("'" + h5 + "': " + error);
+    return done("'" + h5 + "': " + error);
   {
-    std::ofstream out(xdmfPart, std::ios::binary);
-    if (!out)
-      return fail(std::strerror(errno));
+    std::ostringstream out;
     WriteLightData(mesh, EscapeXml(FileName(h5)), out);
-    out.close();
-    if (!out)
-      return fail(std::strerror(errno));
+    if (!WriteFileBytes(xdmfPart, out.str(), error))
+      return done(error);
   }
-  if (std::rename(h5Part.c_str(), h5.c_str()) != 0)
-    return fail("'" + h5 + "': " + std::strerror(errno));
-  if (std::rename(xdmfPart.c_str(), path.c_str()) != 0)
+  if (!MoveIntoPlace(h5Part, h5, error))
+    return done(error);
+  if (!MoveIntoPlace(xdmfPart, path, error))
   {
-    const std::string why = std::strerror(errno);
     std::remove(h5.c_str()); // no .h5 without its .xdmf
-    return fail(why);
+    return done(error);
   }
-  return Status::Ok();
+  return done("");
 }
 } // namespace cbc3d
