@@ -2,17 +2,15 @@
 
 #include "CommandLine.h"
 #include "ErrorCapture.h"
+#include "GeometryOnlyFormats.h"
 #include "MeshFileWriter.h"
 #include "vtkCBC3DConvert.h"
 
 #include "cbc3d/AtomicFile.h"
 
 #include <vtkCellData.h>
-#include <vtkErrorCode.h>
 #include <vtkNew.h>
-#include <vtkOBJWriter.h>
 #include <vtkPolyData.h>
-#include <vtkSTLWriter.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkUnstructuredGridWriter.h>
 #include <vtkXMLPolyDataWriter.h>
@@ -70,32 +68,6 @@ bool WriteLegacySurfaces(vtkPolyData* surfaces, const std::string& path, std::st
   return WriteInMemory(writer.Get(), path, error);
 }
 
-// .stl and .obj: VTK's writers take only a file name; they report a failed write through
-// their error code (a full disk: vtkErrorCode::OutOfDiskSpaceError) or an error event.
-template <typename Writer>
-bool WriteToFile(vtkPolyData* surfaces, const std::string& path, std::string& error)
-{
-  return cbc3d::WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
-    vtkNew<Writer> writer;
-    vtkNew<ErrorCapture> capture;
-    capture->Observe(writer);
-    writer->SetInputData(surfaces);
-    writer->SetFileName(temporary.c_str());
-    if constexpr (std::is_same<Writer, vtkSTLWriter>::value)
-      writer->SetFileTypeToBinary();
-    const int ok = writer->Write();
-    if (!ok || !capture->Error.empty() || writer->GetErrorCode() != vtkErrorCode::NoError)
-    {
-      const unsigned long code = writer->GetErrorCode();
-      message = "cannot write '" + path + "': " +
-        (!capture->Error.empty() ? capture->Error
-                                 : code != vtkErrorCode::NoError ? vtkErrorCode::GetStringFromErrorCode(code)
-                                                                 : std::string("the writer failed"));
-      return false;
-    }
-    return true;
-  });
-}
 } // namespace
 
 bool WriteSurfaceFile(const cbc3d::TaggedMesh& mesh, const std::string& path, std::string& error)
@@ -107,7 +79,5 @@ bool WriteSurfaceFile(const cbc3d::TaggedMesh& mesh, const std::string& path, st
     return WriteXmlSurfaces(surfaces, path, error);
   if (extension == ".vtk")
     return WriteLegacySurfaces(surfaces, path, error);
-  if (extension == ".stl")
-    return WriteToFile<vtkSTLWriter>(surfaces, path, error);
-  return WriteToFile<vtkOBJWriter>(surfaces, path, error);
+  return WriteBytesAtomically(extension == ".stl" ? StlBytes(surfaces) : ObjText(surfaces), path, error);
 }

@@ -49,7 +49,7 @@ private:
 class Hdf5File
 {
 public:
-  explicit Hdf5File(const std::string& path)
+  explicit Hdf5File(const std::string& name)
   {
     this->Links = H5Pcreate(H5P_LINK_CREATE);
     this->Datasets = H5Pcreate(H5P_DATASET_CREATE);
@@ -60,9 +60,15 @@ public:
       this->Error = "HDF5 property lists";
       return;
     }
-    this->Id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    // In memory (the core driver, no backing store): HDF5 1.10 crashes, and loops at exit,
+    // when a write to a full disk fails; the image is written out by WriteFileBytes.
+    const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
+    if (access >= 0 && H5Pset_fapl_core(access, 1 << 20, false) >= 0)
+      this->Id = H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access);
+    if (access >= 0)
+      H5Pclose(access);
     if (this->Id < 0)
-      this->Error = std::string("cannot create the HDF5 file: ") + std::strerror(errno);
+      this->Error = "cannot create the HDF5 file in memory";
   }
   ~Hdf5File()
   {
@@ -96,11 +102,22 @@ public:
       H5Sclose(space);
   }
 
-  std::string Close()
+  // Closes the file and writes its image to `path`; the error, if any step failed.
+  std::string Close(const std::string& path)
   {
+    std::string image;
+    if (this->Error.empty())
+    {
+      const ssize_t size = H5Fflush(this->Id, H5F_SCOPE_GLOBAL) < 0 ? -1 : H5Fget_file_image(this->Id, nullptr, 0);
+      image.resize(size > 0 ? static_cast<std::size_t>(size) : 0);
+      if (size <= 0 || H5Fget_file_image(this->Id, &image[0], image.size()) != size)
+        this->Error = "cannot make the HDF5 file's image";
+    }
     if (this->Id >= 0 && H5Fclose(this->Id) < 0 && this->Error.empty())
       this->Error = "cannot close the HDF5 file";
     this->Id = -1;
+    if (this->Error.empty())
+      WriteFileBytes(path, image, this->Error);
     return this->Error;
   }
 
@@ -147,7 +164,7 @@ std::string WriteHeavyData(const TaggedMesh& mesh, const std::string& path)
     }
     file.Put(SurfaceValues, H5T_STD_I32LE, H5T_NATIVE_INT32, ids, 1);
   }
-  return file.Close();
+  return file.Close(path);
 }
 
 // `text` with XML's special characters escaped (a file name in a DataItem).
