@@ -166,8 +166,9 @@ Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, Tet
   if (limit > 0 && needed > double(limit))
   {
     std::ostringstream msg;
-    msg << "a lattice of edge " << h << " mm over this image would need about "
-        << FormatBytes(needed) << " of memory, more than the " << FormatBytes(double(limit))
+    msg << "a lattice of edge " << h << " mm over this image would need "
+        << (needed < 1e18 ? "about " + FormatBytes(needed) : std::string("more than an exabyte"))
+        << " of memory, more than the " << FormatBytes(double(limit))
         << " allowed; choose a larger lattice size";
     return Status::Error(msg.str());
   }

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <atomic>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <cmath>
 #include <sstream>
@@ -340,16 +341,6 @@ Status ValidateInputs(const LabelImage& image, const TetMesh& mesh, const Deform
   }
   return Status::Ok();
 }
-
-double LargestMove(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to)
-{
-  double largest = 0.0;
-  for (std::size_t p = 0; p < from.size(); ++p)
-  {
-    largest = std::max(largest, (to[p] - from[p]).norm());
-  }
-  return largest;
-}
 } // namespace
 
 Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
@@ -409,14 +400,15 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   std::vector<Eigen::Vector3d>& x = out.Points;
   Registration registration(mesh, sources, matcher, fidelity, stiffness, params, bound,
     0.01 * image.Spacing.minCoeff());
-  // A huge iteration count ends once an iteration moves no vertex by a hundredth of a voxel.
-  const double stillMove = 0.01 * image.Spacing.minCoeff();
-  std::vector<Eigen::Vector3d> before;
+  // A huge iteration count ends once the surface stops approaching the image: its vertices
+  // keep jittering by up to a voxel, but their mean distance to their goals levels off.
+  constexpr int Patience = 5; // iterations without a 1% gain; 5 iterations or fewer never stop
+  double closest = std::numeric_limits<double>::infinity();
+  int withoutGain = 0;
   for (int iteration = 0; iteration < params.Iterations; ++iteration)
   {
     double moved = 0.0;
     std::size_t held = 0;
-    before = x;
     const StepOutcome outcome =
       registration.Iterate(x, 0.1 + 0.9 * double(iteration) / params.Iterations, stops, moved, held);
     if (outcome == StepOutcome::Aborted)
@@ -435,9 +427,12 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     {
       return Status::Aborted();
     }
-    if (LargestMove(before, x) < stillMove)
+    withoutGain = result.MeanStep.back() < 0.99 * closest ? 0 : withoutGain + 1;
+    closest = std::min(closest, result.MeanStep.back());
+    if (withoutGain == Patience)
     {
-      result.StopReason = "converged: iteration " + std::to_string(iteration + 1) + " moved no vertex";
+      result.StopReason = "settled after " + std::to_string(result.Iterations) +
+        " iterations: the last " + std::to_string(Patience) + " brought the surface no closer to the image";
       break;
     }
   }
