@@ -11,8 +11,8 @@
 
 namespace
 {
-// More deformation iterations than any image needs: each moves the surface at most one element
-// size, and the deformation stops once no vertex moves.
+// More deformation iterations than any image needs: the deformation stops once five in a row
+// bring the surface no closer (13 on ball.vti, 16 on the brain).
 constexpr int MaximumIterations = 1000;
 
 bool ParseDouble(const std::string& text, double& value)
@@ -127,7 +127,8 @@ Mesh a 3-D label image into a conforming multi-tissue tetrahedral mesh (CBC3D).
                       deformation ends by moving the surfaces along their normals
                       until each tissue holds its voxels' volume (default on; off
                       leaves them inscribed in the boundary, short of the volume)
-  --iterations N      deformation iterations (default 5; 0 = no deformation)
+  --iterations N      deformation iterations (default 5; 0 = no deformation; at
+                      most 1000: it stops once 5 in a row bring it no closer)
   --background L      a label that is not tissue; repeat for several (default 0)
   --threads N         threads, at most 1024 (default 0 = all cores); the mesh is
                       the same, byte for byte, for any number
@@ -287,7 +288,7 @@ bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::
       if (!ParseInt(text, options.Iterations) || options.Iterations < 0 || options.Iterations > MaximumIterations)
       {
         error = "--iterations must be a whole number from 0 to " + std::to_string(MaximumIterations) +
-          " (deformation stops once nothing moves, long before), not '" + text + "'";
+          " (deformation stops once the surface settles, long before), not '" + text + "'";
         return false;
       }
     }

@@ -34,7 +34,7 @@ with tempfile.TemporaryDirectory() as work:
     print("cbc3d --version needs about %d MiB of address space" % (base // MiB))
     out_of_memory = 0
     succeeded = 0
-    for extra in [16, 24, 32, 48, 64, 96, 128, 160, 192, 256, 320, 448, 640, 1024, 2048]:
+    for extra in [16, 24, 48, 96, 160, 256, 448, 1024, 2048]:
         limit = base + extra * MiB
         folder = os.path.join(work, str(extra))
         os.mkdir(folder)

@@ -153,7 +153,8 @@ Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, Tet
   {
     return Status::Error("the lattice edge length must be a positive number of millimetres");
   }
-  if (h > MaximumLatticeEdgeLength(image))
+  // (The default, 8 voxels, is cheap even over an image smaller than that, and is kept.)
+  if (params.EdgeLength != 0.0 && h > MaximumLatticeEdgeLength(image))
   {
     std::ostringstream msg;
     msg << "a lattice size of " << h << " mm is larger than the image (" << MaximumLatticeEdgeLength(image)

@@ -25,7 +25,7 @@ double DefaultLatticeEdgeLength(const LabelImage& image);
 
 /// The largest useful edge length: the image's extent along its widest axis. A larger cube
 /// than the whole image gives a handful of tets, and sampling them costs time in proportion to
-/// their volume, so BuildBCCLattice refuses it.
+/// their volume, so BuildBCCLattice refuses it (given explicitly; the default is kept).
 double MaximumLatticeEdgeLength(const LabelImage& image);
 
 /// Estimated peak memory of BuildBCCLattice for this edge length, in bytes.
