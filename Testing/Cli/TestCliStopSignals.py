@@ -37,14 +37,23 @@ def wait_for(process, folder, moment):
     return False
 
 
-def stop_at(name, sig, moment, work):
+def stop_at(name, sig, moment, work, tries=4):
+    """Sends `sig` at `moment`; a moment in seconds that the run outlives no more (a machine
+    less loaded than when the whole run was timed) is tried again at half the time."""
     folder = os.path.join(work, name)
     os.mkdir(folder)
-    process = subprocess.Popen(command(folder), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    reached = wait_for(process, folder, moment)
-    if reached:
-        process.send_signal(sig)
-    stdout, stderr = process.communicate(timeout=120)
+    for attempt in range(tries):
+        process = subprocess.Popen(command(folder), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        reached = wait_for(process, folder, moment)
+        if reached:
+            process.send_signal(sig)
+        stdout, stderr = process.communicate(timeout=120)
+        if reached or not isinstance(moment, float):
+            break
+        print("%s: the run ended before %.2f s; again at half that" % (name, moment))
+        for leftover in files_in(folder):
+            os.remove(os.path.join(folder, leftover))
+        moment /= 2
     if not reached:
         check(False, "%s: the run ended (exit %d) before the moment to stop it came" % (name, process.returncode))
         return
