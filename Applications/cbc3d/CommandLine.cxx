@@ -111,7 +111,8 @@ Mesh a 3-D label image into a conforming multi-tissue tetrahedral mesh (CBC3D).
   --surfaces FILE     also write the boundary and interface triangles: .vtp or .vtk
                       (cell arrays BoundaryLabels: the labels on both sides, and
                       SurfaceId), .stl or .obj (geometry only)
-  --bcc-size MM       lattice cube edge in mm (default: 8 x the finest voxel spacing)
+  --bcc-size MM       lattice cube edge in mm (default: 8 x the finest voxel spacing;
+                      at most the image's extent along its widest axis)
   --fidelity F        voxel fidelity target in [0, 1] for refinement (default 0.95;
                       0 = no refinement)
   --boundary-distance MM
