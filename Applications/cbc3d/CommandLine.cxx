@@ -1,6 +1,7 @@
 #include "CommandLine.h"
 
 #include "cbc3d/MeshExport.h"
+#include "cbc3d/Parallel.h"
 
 #include <algorithm>
 #include <cctype>
@@ -10,6 +11,10 @@
 
 namespace
 {
+// More deformation iterations than any image needs: the deformation stops once five in a row
+// bring the surface no closer (13 on ball.vti, 16 on the brain).
+constexpr int MaximumIterations = 1000;
+
 bool ParseDouble(const std::string& text, double& value)
 {
   char* end = nullptr;
@@ -106,7 +111,8 @@ Mesh a 3-D label image into a conforming multi-tissue tetrahedral mesh (CBC3D).
   --surfaces FILE     also write the boundary and interface triangles: .vtp or .vtk
                       (cell arrays BoundaryLabels: the labels on both sides, and
                       SurfaceId), .stl or .obj (geometry only)
-  --bcc-size MM       lattice cube edge in mm (default: 8 x the finest voxel spacing)
+  --bcc-size MM       lattice cube edge in mm (default: 8 x the finest voxel spacing;
+                      at most the image's extent along its widest axis)
   --fidelity F        voxel fidelity target in [0, 1] for refinement (default 0.95;
                       0 = no refinement)
   --boundary-distance MM
@@ -122,9 +128,11 @@ Mesh a 3-D label image into a conforming multi-tissue tetrahedral mesh (CBC3D).
                       deformation ends by moving the surfaces along their normals
                       until each tissue holds its voxels' volume (default on; off
                       leaves them inscribed in the boundary, short of the volume)
-  --iterations N      deformation iterations (default 5; 0 = no deformation)
+  --iterations N      deformation iterations (default 5; 0 = no deformation; at
+                      most 1000: it stops once 5 in a row bring it no closer)
   --background L      a label that is not tissue; repeat for several (default 0)
-  --threads N         threads (default 0 = all cores)
+  --threads N         threads, at most 1024 (default 0 = all cores); the mesh is
+                      the same, byte for byte, for any number
   --report FILE       write the figures as JSON
   --quiet             print nothing but errors
   -h, --help          this text
@@ -278,9 +286,10 @@ bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::
     {
       if (!value(text))
         return false;
-      if (!ParseInt(text, options.Iterations) || options.Iterations < 0)
+      if (!ParseInt(text, options.Iterations) || options.Iterations < 0 || options.Iterations > MaximumIterations)
       {
-        error = "--iterations must be a whole number of at least 0, not '" + text + "'";
+        error = "--iterations must be a whole number from 0 to " + std::to_string(MaximumIterations) +
+          " (deformation stops once the surface settles, long before), not '" + text + "'";
         return false;
       }
     }
@@ -305,9 +314,10 @@ bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::
     {
       if (!value(text))
         return false;
-      if (!ParseInt(text, options.Threads) || options.Threads < 0)
+      if (!ParseInt(text, options.Threads) || options.Threads < 0 || options.Threads > cbc3d::MaximumThreads)
       {
-        error = "--threads must be a whole number of at least 0, not '" + text + "'";
+        error = "--threads must be a whole number from 0 to " + std::to_string(cbc3d::MaximumThreads) +
+          " (0 = all cores), not '" + text + "'";
         return false;
       }
     }

@@ -23,16 +23,6 @@
 
 namespace
 {
-bool CanCreate(const std::string& path, std::string& error)
-{
-  std::ofstream probe(path, std::ios::binary);
-  if (!probe)
-  {
-    error = std::strerror(errno);
-    return false;
-  }
-  return true;
-}
 // The mesh as files carry it, so that meshio, the converter FE users reach for, reads them:
 // its field data without text arrays (the stop reasons; the JSON report keeps the words), and,
 // for the legacy format, whose "vtkIdType" meshio does not know, the id counts as "long".
@@ -64,41 +54,51 @@ vtkSmartPointer<vtkUnstructuredGrid> ForMeshio(vtkUnstructuredGrid* mesh, bool l
 
 bool WriteMeshFile(vtkUnstructuredGrid* input, const std::string& path, std::string& error)
 {
-  const vtkSmartPointer<vtkUnstructuredGrid> mesh = ForMeshio(input, FileExtension(path) == ".vtk");
+  const bool legacy = FileExtension(path) == ".vtk";
+  const vtkSmartPointer<vtkUnstructuredGrid> mesh = ForMeshio(input, legacy);
+  // VTK's writers make the file in memory and ours writes it out with every write checked:
+  // VTK 9.2's XML writer crashes when a write to a full disk fails.
+  vtkNew<ErrorCapture> capture;
+  std::string bytes;
+  if (legacy)
+  {
+    vtkNew<vtkUnstructuredGridWriter> writer;
+    capture->Observe(writer);
+    writer->SetInputData(mesh);
+    writer->WriteToOutputStringOn();
+    writer->SetFileTypeToBinary();
+    writer->SetFileVersion(vtkUnstructuredGridWriter::VTK_LEGACY_READER_VERSION_4_2);
+    if (writer->Write())
+      bytes = writer->GetOutputStdString();
+  }
+  else
+  {
+    // Inline binary, never the default appended mode: VTK 9.2's XML reader cannot read
+    // appended files over ~4 KB with Debian 12's libexpat (VTK issue 19258).
+    vtkNew<vtkXMLUnstructuredGridWriter> writer;
+    capture->Observe(writer);
+    writer->SetInputData(mesh);
+    writer->WriteToOutputStringOn();
+    writer->SetDataModeToBinary();
+    writer->SetCompressorTypeToZLib();
+    if (writer->Write())
+      bytes = writer->GetOutputString();
+  }
+  if (bytes.empty() || !capture->Error.empty())
+  {
+    error = "cannot write '" + path + "'" +
+      (capture->Error.empty() ? std::string() : ": " + capture->Error);
+    return false;
+  }
+  return WriteBytesAtomically(bytes, path, error);
+}
+
+bool WriteBytesAtomically(const std::string& bytes, const std::string& path, std::string& error)
+{
   return cbc3d::WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
-    if (!CanCreate(temporary, message))
+    if (!cbc3d::WriteFileBytes(temporary, bytes, message))
     {
       message = "cannot write '" + path + "': " + message;
-      return false;
-    }
-    vtkNew<ErrorCapture> capture;
-    int ok = 0;
-    if (FileExtension(path) == ".vtk")
-    {
-      vtkNew<vtkUnstructuredGridWriter> writer;
-      capture->Observe(writer);
-      writer->SetInputData(mesh);
-      writer->SetFileName(temporary.c_str());
-      writer->SetFileTypeToBinary();
-      writer->SetFileVersion(vtkUnstructuredGridWriter::VTK_LEGACY_READER_VERSION_4_2);
-      ok = writer->Write();
-    }
-    else
-    {
-      // Inline binary, never the default appended mode: VTK 9.2's XML reader cannot read
-      // appended files over ~4 KB with Debian 12's libexpat (VTK issue 19258).
-      vtkNew<vtkXMLUnstructuredGridWriter> writer;
-      capture->Observe(writer);
-      writer->SetInputData(mesh);
-      writer->SetFileName(temporary.c_str());
-      writer->SetDataModeToBinary();
-      writer->SetCompressorTypeToZLib();
-      ok = writer->Write();
-    }
-    if (!ok || !capture->Error.empty())
-    {
-      message = "cannot write '" + path + "'" +
-        (capture->Error.empty() ? std::string() : ": " + capture->Error);
       return false;
     }
     return true;
@@ -119,13 +119,5 @@ bool CanWriteBeside(const std::string& path, std::string& error)
 
 bool WriteTextFile(const std::string& text, const std::string& path, std::string& error)
 {
-  return cbc3d::WriteAtomically(path, error, [&](const std::string& temporary, std::string& message) {
-    std::ofstream out(temporary, std::ios::binary);
-    if (!out || !(out << text) || !(out.flush()))
-    {
-      message = "cannot write '" + path + "': " + std::strerror(errno);
-      return false;
-    }
-    return true;
-  });
+  return WriteBytesAtomically(text, path, error);
 }

@@ -16,4 +16,7 @@ bool CanWriteBeside(const std::string& path, std::string& error);
 /// Writes text the same all-or-nothing way.
 bool WriteTextFile(const std::string& text, const std::string& path, std::string& error);
 
+/// Writes `bytes` (a file VTK made in memory) to `path`, whole or not at all, every write checked.
+bool WriteBytesAtomically(const std::string& bytes, const std::string& path, std::string& error);
+
 #endif

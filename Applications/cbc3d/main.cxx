@@ -6,6 +6,7 @@
 #include "ImageFileReader.h"
 #include "MeshFileWriter.h"
 #include "Report.h"
+#include "StopSignals.h"
 
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DBCCLattice.h"
@@ -15,6 +16,7 @@
 #include "vtkCBC3DRefinement.h"
 
 #include "cbc3d/MeshExport.h"
+#include "cbc3d/Parallel.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>
@@ -34,8 +36,10 @@
 
 namespace
 {
+// Every error ends here: the run's files go (an output appears only when the whole run did).
 int Fail(const std::string& message, int code = 1)
 {
+  RemoveRunFiles();
   std::cerr << "cbc3d: error: " << message << std::endl;
   return code;
 }
@@ -201,6 +205,7 @@ int Run(int argc, char* argv[])
     }
   }
 
+  cbc3d::StartThreads(options.Threads);
   const bool showProgress = !options.Quiet && isatty(fileno(stderr));
   RunReport report;
   report.Options = options;
@@ -290,6 +295,7 @@ int Run(int argc, char* argv[])
   {
     return Fail(error);
   }
+  KeepRunFiles();
   if (!options.Quiet)
   {
     std::cout << FormatSummary(report) << std::flush;
@@ -302,6 +308,7 @@ int main(int argc, char* argv[])
 {
   // A run too large for the machine ends with a message, not an abort; the output, written to
   // a temporary file and renamed only when whole, is not left half-made.
+  InstallStopHandlers();
   try
   {
     return Run(argc, argv);

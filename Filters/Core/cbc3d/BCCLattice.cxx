@@ -114,6 +114,16 @@ double DefaultLatticeEdgeLength(const LabelImage& image)
   return 8.0 * image.Spacing.minCoeff();
 }
 
+double MaximumLatticeEdgeLength(const LabelImage& image)
+{
+  double widest = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    widest = std::max(widest, image.Dimensions[a] * image.Spacing[a]);
+  }
+  return widest;
+}
+
 double EstimateLatticeBytes(const LabelImage& image, double edgeLength)
 {
   std::array<int, 3> lower, upper;
@@ -143,14 +153,23 @@ Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, Tet
   {
     return Status::Error("the lattice edge length must be a positive number of millimetres");
   }
+  // (The default, 8 voxels, is cheap even over an image smaller than that, and is kept.)
+  if (params.EdgeLength != 0.0 && h > MaximumLatticeEdgeLength(image))
+  {
+    std::ostringstream msg;
+    msg << "a lattice size of " << h << " mm is larger than the image (" << MaximumLatticeEdgeLength(image)
+        << " mm across its widest axis): it would give a handful of tetrahedra; choose at most that";
+    return Status::Error(msg.str());
+  }
   const std::size_t limit =
     params.MemoryLimitBytes > 0 ? params.MemoryLimitBytes : PhysicalMemoryBytes() / 2;
   const double needed = EstimateLatticeBytes(image, h);
   if (limit > 0 && needed > double(limit))
   {
     std::ostringstream msg;
-    msg << "a lattice of edge " << h << " mm over this image would need about "
-        << FormatBytes(needed) << " of memory, more than the " << FormatBytes(double(limit))
+    msg << "a lattice of edge " << h << " mm over this image would need "
+        << (needed < 1e18 ? "about " + FormatBytes(needed) : std::string("more than an exabyte"))
+        << " of memory, more than the " << FormatBytes(double(limit))
         << " allowed; choose a larger lattice size";
     return Status::Error(msg.str());
   }
@@ -164,6 +183,7 @@ Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, Tet
   // Pass 1, parallel: sample every candidate tet; each writes only its own slots.
   std::atomic<bool> stop(false);
   std::atomic<std::int64_t> done(0);
+  RegionErrors errors; // out of memory in a thread: thrown again below, not std::terminate
   const std::int64_t stride = std::min<std::int64_t>(cubes / 100 + 1, 1000);
 #pragma omp parallel num_threads(ThreadCount(params.NumberOfThreads))
   {
@@ -172,30 +192,32 @@ Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, Tet
 #pragma omp for schedule(dynamic, 64)
     for (std::int64_t cube = 0; cube < cubes; ++cube)
     {
-      if (stop.load(std::memory_order_relaxed))
+      if (stop.load(std::memory_order_relaxed) || errors.Failed())
       {
         continue;
       }
-      for (int slot = 0; slot < 12; ++slot)
-      {
-        std::array<std::int64_t, 4> ids;
-        if (!frame.SlotTet(cube, slot / 4, slot % 4, ids))
+      errors.Run([&]() {
+        for (int slot = 0; slot < 12; ++slot)
         {
-          continue;
+          std::array<std::int64_t, 4> ids;
+          if (!frame.SlotTet(cube, slot / 4, slot % 4, ids))
+          {
+            continue;
+          }
+          std::array<Eigen::Vector3d, 4> corners;
+          for (int v = 0; v < 4; ++v)
+          {
+            corners[v] = image.Origin + image.Direction * frame.Position(ids[v]);
+          }
+          SampleTetLabels(image, corners, counts);
+          std::int32_t label = 0;
+          if (counts.MajorityTissue(image, label))
+          {
+            slotKept[12 * cube + slot] = 1;
+            slotLabel[12 * cube + slot] = label;
+          }
         }
-        std::array<Eigen::Vector3d, 4> corners;
-        for (int v = 0; v < 4; ++v)
-        {
-          corners[v] = image.Origin + image.Direction * frame.Position(ids[v]);
-        }
-        SampleTetLabels(image, corners, counts);
-        std::int32_t label = 0;
-        if (counts.MajorityTissue(image, label))
-        {
-          slotKept[12 * cube + slot] = 1;
-          slotLabel[12 * cube + slot] = label;
-        }
-      }
+      });
       const std::int64_t finished = done.fetch_add(1, std::memory_order_relaxed) + 1;
       if (progress && ThreadId() == 0 && ++ownCubes % stride == 0 &&
         !progress(0.95 * double(finished) / double(cubes)))
@@ -204,6 +226,7 @@ Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, Tet
       }
     }
   }
+  errors.Rethrow();
   // Thread 0 may have had no turn to report (a busy machine); ask once more before going on.
   if (stop.load() || (progress && !progress(0.95)))
   {

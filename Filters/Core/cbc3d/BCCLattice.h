@@ -23,6 +23,11 @@ struct LatticeParams
 /// The paper's choice of 8 voxel spacings, measured along the finest image axis.
 double DefaultLatticeEdgeLength(const LabelImage& image);
 
+/// The largest useful edge length: the image's extent along its widest axis. A larger cube
+/// than the whole image gives a handful of tets, and sampling them costs time in proportion to
+/// their volume, so BuildBCCLattice refuses it (given explicitly; the default is kept).
+double MaximumLatticeEdgeLength(const LabelImage& image);
+
 /// Estimated peak memory of BuildBCCLattice for this edge length, in bytes.
 double EstimateLatticeBytes(const LabelImage& image, double edgeLength);
 

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <atomic>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <cmath>
 #include <sstream>
@@ -409,6 +410,11 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   std::vector<Eigen::Vector3d>& x = out.Points;
   Registration registration(mesh, sources, matcher, fidelity, std::move(stiffness), params, bound,
     0.01 * image.Spacing.minCoeff());
+  // A huge iteration count ends once the surface stops approaching the image: its vertices
+  // keep jittering by up to a voxel, but their mean distance to their goals levels off.
+  constexpr int Patience = 5; // iterations without a 1% gain; 5 iterations or fewer never stop
+  double closest = std::numeric_limits<double>::infinity();
+  int withoutGain = 0;
   for (int iteration = 0; iteration < params.Iterations; ++iteration)
   {
     double moved = 0.0;
@@ -430,6 +436,14 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     if (stops.Stopped(0.1 + 0.9 * double(iteration + 1) / params.Iterations))
     {
       return Status::Aborted();
+    }
+    withoutGain = result.MeanStep.back() < 0.99 * closest ? 0 : withoutGain + 1;
+    closest = std::min(closest, result.MeanStep.back());
+    if (withoutGain == Patience)
+    {
+      result.StopReason = "settled after " + std::to_string(result.Iterations) +
+        " iterations: the last " + std::to_string(Patience) + " brought the surface no closer to the image";
+      break;
     }
   }
   if (params.KeepVolumes && result.Iterations > 0)

@@ -98,6 +98,7 @@ Status WriteExportFile(const TaggedMesh& mesh, const std::string& path, bool gms
           message = "cannot write '" + path + "': " + status.GetMessage();
         return status.IsOk();
       }
+      errno = 0;
       std::ofstream out(temporary, std::ios::binary);
       if (!out)
       {
@@ -108,8 +109,10 @@ Status WriteExportFile(const TaggedMesh& mesh, const std::string& path, bool gms
       out.close();
       if (!status.IsOk() || !out)
       {
+        // A failed write leaves errno's reason (a full disk: ENOSPC, a size limit: EFBIG).
         message = "cannot write '" + path + "': " +
-          (status.IsOk() ? std::string(std::strerror(errno)) : status.GetMessage());
+          (!out && errno != 0 ? std::string(std::strerror(errno))
+                              : status.IsOk() ? std::string("the write failed") : status.GetMessage());
         return false;
       }
       return true;

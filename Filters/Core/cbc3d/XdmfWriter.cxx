@@ -1,6 +1,8 @@
 #include "cbc3d/XdmfWriter.h"
 
+#include "cbc3d/AtomicFile.h"
 #include "cbc3d/MeshExport.h"
+#include "cbc3d/PendingFiles.h"
 
 #include <hdf5.h>
 
@@ -47,7 +49,7 @@ private:
 class Hdf5File
 {
 public:
-  explicit Hdf5File(const std::string& path)
+  explicit Hdf5File(const std::string& name)
   {
     this->Links = H5Pcreate(H5P_LINK_CREATE);
     this->Datasets = H5Pcreate(H5P_DATASET_CREATE);
@@ -58,9 +60,15 @@ public:
       this->Error = "HDF5 property lists";
       return;
     }
-    this->Id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    // In memory (the core driver, no backing store): HDF5 1.10 crashes, and loops at exit,
+    // when a write to a full disk fails; the image is written out by WriteFileBytes.
+    const hid_t access = H5Pcreate(H5P_FILE_ACCESS);
+    if (access >= 0 && H5Pset_fapl_core(access, 1 << 20, false) >= 0)
+      this->Id = H5Fcreate(name.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access);
+    if (access >= 0)
+      H5Pclose(access);
     if (this->Id < 0)
-      this->Error = std::string("cannot create the HDF5 file: ") + std::strerror(errno);
+      this->Error = "cannot create the HDF5 file in memory";
   }
   ~Hdf5File()
   {
@@ -94,11 +102,22 @@ public:
       H5Sclose(space);
   }
 
-  std::string Close()
+  // Closes the file and writes its image to `path`; the error, if any step failed.
+  std::string Close(const std::string& path)
   {
+    std::string image;
+    if (this->Error.empty())
+    {
+      const ssize_t size = H5Fflush(this->Id, H5F_SCOPE_GLOBAL) < 0 ? -1 : H5Fget_file_image(this->Id, nullptr, 0);
+      image.resize(size > 0 ? static_cast<std::size_t>(size) : 0);
+      if (size <= 0 || H5Fget_file_image(this->Id, &image[0], image.size()) != size)
+        this->Error = "cannot make the HDF5 file's image";
+    }
     if (this->Id >= 0 && H5Fclose(this->Id) < 0 && this->Error.empty())
       this->Error = "cannot close the HDF5 file";
     this->Id = -1;
+    if (this->Error.empty())
+      WriteFileBytes(path, image, this->Error);
     return this->Error;
   }
 
@@ -145,7 +164,7 @@ std::string WriteHeavyData(const TaggedMesh& mesh, const std::string& path)
     }
     file.Put(SurfaceValues, H5T_STD_I32LE, H5T_NATIVE_INT32, ids, 1);
   }
-  return file.Close();
+  return file.Close(path);
 }
 
 // `text` with XML's special characters escaped (a file name in a DataItem).
@@ -227,34 +246,35 @@ Status WriteXdmf(const TaggedMesh& mesh, const std::string& path)
   if (mesh.Tets.empty())
     return Status::Error("the mesh has no tetrahedra to write");
   const std::string h5 = XdmfHeavyDataPath(path);
-  const std::string part = ".part-" + std::to_string(getpid());
-  const std::string xdmfPart = path + part, h5Part = h5 + part;
-  const auto fail = [&](const std::string& why) {
-    std::remove(xdmfPart.c_str());
-    std::remove(h5Part.c_str());
-    return Status::Error(why);
+  const std::string xdmfPart = TemporaryPath(path), h5Part = TemporaryPath(h5);
+  const int xdmfSlot = PendingFiles::Add(xdmfPart), h5Slot = PendingFiles::Add(h5Part);
+  const auto done = [&](const std::string& why) {
+    if (!why.empty())
+    {
+      std::remove(xdmfPart.c_str());
+      std::remove(h5Part.c_str());
+    }
+    PendingFiles::Forget(xdmfSlot);
+    PendingFiles::Forget(h5Slot);
+    return why.empty() ? Status::Ok() : Status::Error(why);
   };
 
   std::string error = WriteHeavyData(mesh, h5Part);
   if (!error.empty())
-    return fail("'" + h5 + "': " + error);
+    return done("'" + h5 + "': " + error);
   {
-    std::ofstream out(xdmfPart, std::ios::binary);
-    if (!out)
-      return fail(std::strerror(errno));
+    std::ostringstream out;
     WriteLightData(mesh, EscapeXml(FileName(h5)), out);
-    out.close();
-    if (!out)
-      return fail(std::strerror(errno));
+    if (!WriteFileBytes(xdmfPart, out.str(), error))
+      return done(error);
   }
-  if (std::rename(h5Part.c_str(), h5.c_str()) != 0)
-    return fail("'" + h5 + "': " + std::strerror(errno));
-  if (std::rename(xdmfPart.c_str(), path.c_str()) != 0)
+  if (!MoveIntoPlace(h5Part, h5, error))
+    return done(error);
+  if (!MoveIntoPlace(xdmfPart, path, error))
   {
-    const std::string why = std::strerror(errno);
     std::remove(h5.c_str()); // no .h5 without its .xdmf
-    return fail(why);
+    return done(error);
   }
-  return Status::Ok();
+  return done("");
 }
 } // namespace cbc3d

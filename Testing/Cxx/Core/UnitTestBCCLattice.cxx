@@ -186,6 +186,12 @@ TEST(BCCLattice, RefusesBadEdgeLengthsAndStopsWhenAsked)
   params.EdgeLength = 1e-4; // about 10^15 cubes
   const cbc3d::Status tooSmall = cbc3d::BuildBCCLattice(image, params, mesh);
   EXPECT_NE(tooSmall.GetMessage().find("memory"), std::string::npos) << tooSmall.GetMessage();
+  params.EdgeLength = 1e308; // far larger than the image: refused at once, not sampled for ever
+  const cbc3d::Status tooLarge = cbc3d::BuildBCCLattice(image, params, mesh);
+  EXPECT_NE(tooLarge.GetMessage().find("larger than the image"), std::string::npos) << tooLarge.GetMessage();
+  params.EdgeLength = cbc3d::MaximumLatticeEdgeLength(image); // 16 mm: a few tets, quickly
+  EXPECT_TRUE(cbc3d::BuildBCCLattice(image, params, mesh).IsOk());
+  EXPECT_GT(mesh.Tets.size(), 0u);
   params.EdgeLength = 1.0;
   const cbc3d::Status stopped =
     cbc3d::BuildBCCLattice(image, params, mesh, [](double) { return false; });

@@ -1,0 +1,16 @@
+#ifndef cbc3d_StopSignals_h
+#define cbc3d_StopSignals_h
+
+/// Makes the command end cleanly however it is stopped: SIGINT, SIGTERM and SIGHUP remove every
+/// file of the run (cbc3d::PendingFiles: the temporary files and the outputs already renamed)
+/// and exit with 128 + the signal's number after one line on stderr; SIGXFSZ is ignored, so a
+/// file-size limit fails the write (EFBIG) instead of killing the process; and an exception
+/// that reaches std::terminate (one escaping an OpenMP region, where it cannot be caught
+/// outside) gives one line and exit code 1 instead of an abort, the files removed too.
+void InstallStopHandlers();
+
+/// Removes the run's files (the error path) or forgets them (the run finished).
+void RemoveRunFiles();
+void KeepRunFiles();
+
+#endif
