@@ -2,6 +2,7 @@
 
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DConvert.h"
+#include "vtkCBC3DLabelValues.h"
 
 #include "cbc3d/MeshTopology.h"
 #include "cbc3d/Parallel.h"
@@ -98,7 +99,7 @@ vtkSmartPointer<vtkStaticPointLocator> MakeLocator(
 // The topology arrays: the whole body's, then one value per tissue row (`labels`, ascending).
 // `image` is null without the label image.
 void AddTopologyFields(vtkFieldData* fields, const cbc3d::MeshTopology& topology,
-  const cbc3d::ImageTopology* image, const std::vector<int>& labels)
+  const cbc3d::ImageTopology* image, const std::vector<std::int32_t>& labels)
 {
   namespace names = vtkCBC3DArrayNames;
   const cbc3d::RegionTopology& whole = topology.Whole;
@@ -179,12 +180,10 @@ int vtkCBC3DMeshQuality::RequestData(
   const bool withImage = this->HasImage(inputVector);
 
   cbc3d::TetMesh mesh;
-  if (!this->ReadMesh(inputVector, mesh))
-  {
-    return 0;
-  }
   cbc3d::LabelImage image;
-  if (withImage && !this->ReadLabelImage(inputVector, image))
+  const bool read = withImage ? this->ReadMeshAndImage(inputVector, mesh, image)
+                              : this->ReadMesh(inputVector, mesh, image.Codes);
+  if (!read)
   {
     return 0;
   }
@@ -234,7 +233,7 @@ int vtkCBC3DMeshQuality::RequestData(
       const auto imageSide = boundary.find(label);
       if (meshSide == surface.end() || imageSide == boundary.end())
       {
-        vtkWarningMacro(<< "tissue " << label << " is in the "
+        vtkWarningMacro(<< "tissue " << image.Codes.ValueOf(label) << " is in the "
                         << (meshSide == surface.end() ? "image but not in the mesh"
                                                       : "mesh but not in the image")
                         << ": its distances are NaN");
@@ -284,7 +283,7 @@ int vtkCBC3DMeshQuality::RequestData(
   AddFieldArray<vtkDoubleArray>(fields, names::MinDihedralAngle, std::vector<double>{ empty ? NaN : all.MinDegrees });
   AddFieldArray<vtkDoubleArray>(fields, names::MaxDihedralAngle, std::vector<double>{ empty ? NaN : all.MaxDegrees });
 
-  std::vector<int> tissueLabels;
+  std::vector<std::int32_t> tissueLabels;
   std::vector<vtkIdType> tets, inverted, small, large;
   std::vector<double> minima, maxima, hausdorff, meshToImage, imageToMesh, hausdorff95, mean, volume, imageVolume;
   const auto meshVolumes = cbc3d::TissueMeshVolumes(mesh);
@@ -319,7 +318,7 @@ int vtkCBC3DMeshQuality::RequestData(
     distanceSum += std::isnan(d.Mean) ? NaN : d.Mean * static_cast<double>(row.DistanceCount);
     distanceCount += row.DistanceCount;
   }
-  AddFieldArray<vtkIntArray>(fields, names::TissueLabel, tissueLabels);
+  fields->AddArray(vtkCBC3DLabelValues::FromCodes(tissueLabels, image.Codes, names::TissueLabel));
   AddFieldArray<vtkIdTypeArray>(fields, names::TissueTetCount, tets);
   AddFieldArray<vtkIdTypeArray>(fields, names::TissueInvertedTetCount, inverted);
   AddFieldArray<vtkIdTypeArray>(fields, names::TissueSmallAngleTetCount, small);
