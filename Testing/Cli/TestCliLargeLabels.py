@@ -103,14 +103,14 @@ def check_vtk_files(name, paths, tissues, large):
 
 def check_named_formats(name, paths, tissues, labels):
     """.inp and .feb name each tissue tissue_<label>; .exo names its blocks so."""
-    names = sorted("tissue_%d" % t for t in tissues)
+    names = ["tissue_%d" % t for t in sorted(tissues)]
     inp = meshio.read(paths[".inp"], file_format="abaqus")
     sets = {k: len(np.concatenate(v)) for k, v in inp.cell_sets.items() if k.startswith("tissue_")}
-    check(sorted(sets) == names, "%s .inp: element sets %s" % (name, sorted(sets)))
+    check(sorted(sets) == sorted(names), "%s .inp: element sets %s" % (name, sorted(sets)))
     check(all(sets["tissue_%d" % t] == int((labels == t).sum()) for t in tissues),
           "%s .inp: every tet in its tissue's set" % name)
     feb = ElementTree.parse(paths[".feb"]).getroot()
-    check(sorted(e.get("name") for e in feb.iter("Elements")) == names, "%s .feb: Elements named %s" % (name, names))
+    check([e.get("name") for e in feb.iter("Elements")] == names, "%s .feb: Elements named %s" % (name, names))
     with netCDF4.Dataset(paths[".exo"]) as exo:
         blocks = [b"".join(row.compressed()).decode() for row in exo.variables["eb_names"][:]]
         ids = exo.variables["eb_prop1"][:].tolist()
@@ -125,7 +125,7 @@ def check_report_and_surfaces(name, paths, tissues, outside):
         report = json.load(f)
     check(sorted(report["tissues"]) == sorted(str(t) for t in tissues),
           "%s report: tissues %s" % (name, sorted(report["tissues"])))
-    sides = {tuple(s["labels"]) for s in report["surfaces"]}
+    sides = {tuple(s["labels"]) for s in report["surfaces"].values()}
     low, high = sorted(tissues)
     check(sides == {(low, outside), (high, outside), (low, high)}, "%s report: surfaces %s" % (name, sorted(sides)))
     reader = vtkXMLPolyDataReader()
@@ -136,20 +136,23 @@ def check_report_and_surfaces(name, paths, tissues, outside):
           "%s surfaces: BoundaryLabels hold %s" % (name, sorted(sides)))
 
 
-def check_int32_formats(name, image, tissues, labels):
-    """Small labels: Gmsh (both versions) and Medit hold them as tags and refs."""
-    paths = {e: os.path.join(OUT, name + e) for e in (".msh", ".mesh")}
-    result = run(image, list(paths.values()))
-    check(result.returncode == 0, "%s: .msh and .mesh written (%s)" % (name, result.stderr.strip()))
+def check_int32_formats(name, paths, image, tissues, labels, msh_options):
+    """Small labels: Medit refs, and Gmsh tags in both versions (with `msh_options` given: the
+    run's options; None skips Gmsh); a label of 0 or less is refused by Gmsh as before."""
     medit = meshio.read(paths[".mesh"])
     refs = np.concatenate([r for c, r in zip(medit.cells, medit.cell_data["medit:ref"]) if c.type == "tetra"])
     check(sorted(refs.tolist()) == sorted(labels.tolist()), "%s .mesh: tet refs are the labels" % name)
-    for version in ("4.1", "2.2"):
+    for version in ("4.1", "2.2") if msh_options is not None else ():
         msh = os.path.join(OUT, "%s-%s.msh" % (name, version))
-        run(image, [msh], "--msh-version", version)
+        result = run(image, [msh], "--msh-version", version, *msh_options)
+        if min(tissues) <= 0:
+            check(result.returncode != 0 and "positive physical tags" in result.stderr,
+                  "%s .msh %s: refused for a label of 0 or less, as before" % (name, version))
+            continue
         if gmsh is None:
             continue
-        gmsh.initialize(["-v", "0"])
+        gmsh.initialize()
+        gmsh.option.setNumber("General.Verbosity", 0)
         gmsh.open(msh)
         groups = {tag: gmsh.model.getPhysicalName(3, tag) for _, tag in gmsh.model.getPhysicalGroups(3)}
         gmsh.finalize()
@@ -162,25 +165,31 @@ def check_refusals(name, image):
         path = os.path.join(OUT, name + "-refused" + extension)
         result = run(image, [path], *options)
         lines = result.stderr.strip().splitlines()
-        check(result.returncode != 0 and len(lines) == 1 and "cannot hold tissue label" in lines[0],
+        # A negative label is refused by Gmsh for its sign first, as a small one always was.
+        reason = "cannot hold tissue label" in result.stderr or "positive physical tags" in result.stderr
+        check(result.returncode != 0 and len(lines) == 1 and reason,
               "%s %s %s: refused in one line: %s" % (name, extension, " ".join(options), lines))
         left = [f for f in os.listdir(OUT) if f.startswith(name + "-refused")]
         check(not left, "%s %s: no file left (%s)" % (name, extension, left))
 
 
-def mesh_case(name, image, tissues, large, outside=0, options=()):
-    paths = {e: os.path.join(OUT, name + e) for e in (".vtu", ".vtk", ".inp", ".feb", ".exo", ".json", ".vtp")}
-    outputs = [paths[e] for e in (".vtu", ".vtk", ".inp", ".feb", ".exo")]
+def mesh_case(name, image, tissues, large, outside=0, options=(), refusals=True):
+    """Meshes `image` to every format that holds its labels and checks them (and, with
+    `refusals`, that the others refuse large labels or hold small ones); returns the .vtu's
+    labels, points and cells."""
+    extensions = [".vtu", ".vtk", ".inp", ".feb", ".exo"] + ([] if large else [".mesh"])
+    paths = {e: os.path.join(OUT, name + e) for e in extensions + [".json", ".vtp"]}
+    outputs = [paths[e] for e in extensions]
     result = run(image, outputs, "--report", paths[".json"], "--surfaces", paths[".vtp"], *options)
-    if not check(result.returncode == 0, "%s: meshed to .vtu .vtk .inp .feb .exo (%s)" % (name, result.stderr.strip())):
+    if not check(result.returncode == 0, "%s: meshed to %s (%s)" % (name, " ".join(extensions), result.stderr.strip())):
         return None
     labels, points, cells = check_vtk_files(name, paths, tissues, large)
     check_named_formats(name, paths, tissues, labels)
     check_report_and_surfaces(name, paths, tissues, outside)
-    if large:
+    if large and refusals:
         check_refusals(name, image)
-    else:
-        check_int32_formats(name, image, tissues, labels)
+    elif not large:
+        check_int32_formats(name, paths, image, tissues, labels, options if refusals else None)
     return labels, points, cells
 
 
@@ -203,11 +212,11 @@ def main():
         for small_type, low, high in (("uint8", 7, 200), ("int16", -3, 1000)):
             name = "%s-%s" % (small_type, kind[1:])
             image = write_input(name, kind, phantom(small_type, low, high))
-            twins[(low, high)] = mesh_case(name, image, (low, high), False)
+            twins[(low, high)] = mesh_case(name, image, (low, high), False, refusals=kind == ".vti")
         for name, dtype, low, high, twin in cases:
             name = "%s-%s" % (name, kind[1:])
             image = write_input(name, kind, phantom(dtype, low, high))
-            mesh = mesh_case(name, image, (low, high), True)
+            mesh = mesh_case(name, image, (low, high), True, refusals=kind == ".vti")
             same_mesh(name, mesh, twins[twin], {twin[0]: low, twin[1]: high})
 
     # A large outside label (the first --background) with small tissues: Gmsh still writes them.
