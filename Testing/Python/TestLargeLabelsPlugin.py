@@ -35,7 +35,7 @@ def phantom(dtype, background, low, high):
 
 
 def values(array):
-    return sorted(set(vtk_to_numpy(array).astype(np.int64).tolist()))
+    return sorted(set(vtk_to_numpy(array).astype(np.int64).ravel().tolist()))
 
 
 def mesh_case(dtype, background, low, high):
@@ -47,8 +47,8 @@ def mesh_case(dtype, background, low, high):
     scalars = image.GetPointData().GetScalars()
     check(values(scalars) == sorted({background, low, high}), "%s: the reader gives %s" % (name, values(scalars)))
     mesher = CBC3DImageToMesh(Input=reader)  # noqa: F405 (from the plugin)
-    mesher.EdgeLength = 2.5
-    mesher.Iterations = 1
+    mesher.LatticeSize = 2.5
+    mesher.DeformationIterations = 1
     mesher.BackgroundLabels = [background]
     mesher.UpdatePipeline()
     mesh = servermanager.Fetch(mesher)
