@@ -4,10 +4,8 @@
 #include "vtkCBC3DLabelValues.h"
 
 #include <vtkAlgorithm.h>
-#include <vtkArrayDispatch.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
-#include <vtkDataArrayRange.h>
 #include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
@@ -20,9 +18,7 @@
 #include <vtkPoints.h>
 #include <vtkUnstructuredGrid.h>
 
-#include <cmath>
 #include <cstdint>
-#include <limits>
 #include <sstream>
 
 namespace vtkCBC3DConvert
@@ -109,19 +105,18 @@ bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
     }
   }
 
-  // One table for the image's labels, the background labels and the caller's (a mesh's).
-  std::vector<std::int64_t>& values = otherValues;
-  if (!vtkCBC3DLabelValues::CollectValues(labels, values, error))
+  // One table for the image's labels, the background labels and the caller's (a mesh's), so
+  // every background label has a code too.
+  if (!vtkCBC3DLabelValues::CollectValues(labels, otherValues, error))
   {
     return false;
   }
-  values.insert(values.end(), backgroundLabels.begin(), backgroundLabels.end());
-  out.Codes = cbc3d::LabelCodes::ForValues(std::move(values));
-  out.BackgroundLabels.clear();
-  for (const vtkTypeInt64 background : backgroundLabels)
+  otherValues.insert(otherValues.end(), backgroundLabels.begin(), backgroundLabels.end());
+  out.Codes = cbc3d::LabelCodes::ForValues(std::move(otherValues));
+  out.BackgroundLabels.assign(backgroundLabels.size(), 0);
+  for (std::size_t b = 0; b < backgroundLabels.size(); ++b)
   {
-    out.BackgroundLabels.push_back(0);
-    out.Codes.FindCode(background, out.BackgroundLabels.back());
+    out.Codes.FindCode(backgroundLabels[b], out.BackgroundLabels[b]);
   }
   out.Labels.resize(labels->GetNumberOfTuples());
   vtkCBC3DLabelValues::ToCodes(labels, out.Codes, out.Labels.data());
