@@ -71,14 +71,15 @@ bool ToTaggedMesh(vtkUnstructuredGrid* grid, vtkTypeInt64 outside, cbc3d::Tagged
 
 /**
  * Fills `out` with the mesh's points, VTK_TETRA cells and the `Label` cell array: the values of
- * the mesh's codes, a vtkIntArray when they fit in 32 bits, else a vtkTypeInt64Array.
+ * the mesh's codes, a vtkIntArray when they fit in 32 bits, else a 64-bit integer array.
  */
 void ToUnstructuredGrid(const cbc3d::TetMesh& mesh, const cbc3d::LabelCodes& codes, vtkUnstructuredGrid* out);
 
 /**
  * Fills `out` with the tagged mesh's boundary and interface triangles over the points they use:
  * cell data `BoundaryLabels` (2 components: the label behind each triangle, then the label its
- * normal points into, TaggedMesh's rule; a vtkIntArray, or vtkTypeInt64Array for larger labels) and `SurfaceId` (TaggedSurface::Id).
+ * normal points into, TaggedMesh's rule; a vtkIntArray, or a 64-bit one for larger labels) and
+ * `SurfaceId` (TaggedSurface::Id).
  */
 void ToPolyData(const cbc3d::TaggedMesh& mesh, vtkPolyData* out);
 

@@ -3,6 +3,7 @@
 #include <vtkArrayDispatch.h>
 #include <vtkDataArrayRange.h>
 #include <vtkIntArray.h>
+#include <vtkLongArray.h>
 #include <vtkTypeInt64Array.h>
 
 #include <algorithm>
@@ -56,9 +57,16 @@ std::string Refusal(T value)
   return msg.str();
 }
 
+// The array for labels beyond 32 bits: a 64-bit vtkLongArray where long has 64 bits (Debian),
+// since the legacy .vtk writer names it "long", which meshio reads, and vtkTypeInt64Array
+// "vtktypeint64", which meshio 5.0's legacy reader refuses.
+using LargeLabelArray = std::conditional_t<VTK_SIZEOF_LONG == 8, vtkLongArray, vtkTypeInt64Array>;
+
 // Labels usually span a short range: a table of the values present beats sorting every voxel.
 constexpr std::int64_t LongestPresenceTable = std::int64_t(1) << 24;
 
+// Checks every value and gathers the distinct ones: through a table of the values present when
+// they span a short range (the usual case, and no copy of the image), else by sorting a copy.
 struct Collect
 {
   std::vector<std::int64_t>* Values = nullptr;
@@ -68,8 +76,8 @@ struct Collect
   void operator()(ArrayT* array)
   {
     const auto range = vtk::DataArrayValueRange<1>(array);
-    std::vector<std::int64_t> all;
-    all.reserve(range.size());
+    std::int64_t lowest = std::numeric_limits<std::int64_t>::max();
+    std::int64_t highest = std::numeric_limits<std::int64_t>::min();
     for (const auto value : range)
     {
       std::int64_t label = 0;
@@ -78,23 +86,33 @@ struct Collect
         this->Error = Refusal(value);
         return;
       }
-      all.push_back(label);
+      lowest = std::min(lowest, label);
+      highest = std::max(highest, label);
     }
-    if (all.empty())
+    if (range.size() == 0)
     {
       return;
     }
-    const auto [low, high] = std::minmax_element(all.begin(), all.end());
-    const std::int64_t lowest = *low, highest = *high;
+    std::int64_t label = 0;
     if (highest / 2 - lowest / 2 < LongestPresenceTable / 2)
     {
       std::vector<bool> present(static_cast<std::size_t>(highest - lowest + 1), false);
-      for (const std::int64_t label : all)
+      for (const auto value : range)
+      {
+        ToLabelValue(value, label);
         present[static_cast<std::size_t>(label - lowest)] = true;
+      }
       for (std::size_t offset = 0; offset < present.size(); ++offset)
         if (present[offset])
           this->Values->push_back(lowest + static_cast<std::int64_t>(offset));
       return;
+    }
+    std::vector<std::int64_t> all;
+    all.reserve(range.size());
+    for (const auto value : range)
+    {
+      ToLabelValue(value, label);
+      all.push_back(label);
     }
     std::sort(all.begin(), all.end());
     all.erase(std::unique(all.begin(), all.end()), all.end());
@@ -163,7 +181,7 @@ vtkSmartPointer<vtkDataArray> FromCodes(const std::vector<std::int32_t>& labels,
   }
   else
   {
-    array = vtkSmartPointer<vtkTypeInt64Array>::New();
+    array = vtkSmartPointer<LargeLabelArray>::New();
   }
   array->SetName(name);
   array->SetNumberOfComponents(components);
@@ -175,7 +193,7 @@ vtkSmartPointer<vtkDataArray> FromCodes(const std::vector<std::int32_t>& labels,
   }
   else
   {
-    auto* longs = vtkTypeInt64Array::SafeDownCast(array);
+    auto* longs = LargeLabelArray::SafeDownCast(array);
     for (std::size_t i = 0; i < labels.size(); ++i)
       longs->SetValue(static_cast<vtkIdType>(i), codes.ValueOf(labels[i]));
   }

@@ -35,7 +35,8 @@ bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, std::int32_t* 
 
 /**
  * A label array holding the values of `codes` (`components` per tuple): a vtkIntArray when
- * every value fits in 32 bits, as a label array always was, else a vtkTypeInt64Array.
+ * every value fits in 32 bits, as a label array always was, else a 64-bit integer array
+ * (vtkLongArray on Linux, for meshio's legacy .vtk reader).
  */
 vtkSmartPointer<vtkDataArray> FromCodes(const std::vector<std::int32_t>& labels,
   const cbc3d::LabelCodes& codes, const char* name, int components = 1);
