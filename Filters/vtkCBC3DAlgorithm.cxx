@@ -3,6 +3,7 @@
 #include "vtkCBC3DConvert.h"
 #include "vtkCBC3DLabelImageCache.h"
 
+#include "cbc3d/LabelCodes.h"
 #include "cbc3d/LabelImage.h"
 #include "cbc3d/Status.h"
 #include "cbc3d/TetMesh.h"
@@ -55,7 +56,7 @@ bool vtkCBC3DAlgorithm::HasImage(vtkInformationVector** inputVector) const
   return inputVector[this->ImagePort]->GetNumberOfInformationObjects() > 0;
 }
 
-void vtkCBC3DAlgorithm::AddBackgroundLabel(int label)
+void vtkCBC3DAlgorithm::AddBackgroundLabel(vtkTypeInt64 label)
 {
   if (std::find(this->BackgroundLabels.begin(), this->BackgroundLabels.end(), label) ==
     this->BackgroundLabels.end())
@@ -74,7 +75,7 @@ void vtkCBC3DAlgorithm::RemoveAllBackgroundLabels()
   }
 }
 
-void vtkCBC3DAlgorithm::SetBackgroundLabel(int label)
+void vtkCBC3DAlgorithm::SetBackgroundLabel(vtkTypeInt64 label)
 {
   this->RemoveAllBackgroundLabels();
   this->AddBackgroundLabel(label);
@@ -85,19 +86,19 @@ int vtkCBC3DAlgorithm::GetNumberOfBackgroundLabels() const
   return static_cast<int>(this->BackgroundLabels.size());
 }
 
-int vtkCBC3DAlgorithm::GetBackgroundLabel(int index) const
+vtkTypeInt64 vtkCBC3DAlgorithm::GetBackgroundLabel(int index) const
 {
   return this->BackgroundLabels.at(index);
 }
 
 std::shared_ptr<const cbc3d::LabelImage> vtkCBC3DAlgorithm::ReadLabelImage(
-  vtkInformationVector** inputVector)
+  vtkInformationVector** inputVector, const std::vector<std::int64_t>& otherValues)
 {
   vtkImageData* input = vtkImageData::GetData(inputVector[this->ImagePort]);
   vtkDataArray* labels =
     vtkCBC3DConvert::ChooseLabelArray(this->GetInputArrayInformation(0), input);
   std::string error;
-  auto image = vtkCBC3DLabelImageCache::Get(input, labels, this->BackgroundLabels, error);
+  auto image = vtkCBC3DLabelImageCache::Get(input, labels, this->BackgroundLabels, otherValues, error);
   if (!image)
   {
     vtkErrorMacro(<< error);
@@ -105,10 +106,40 @@ std::shared_ptr<const cbc3d::LabelImage> vtkCBC3DAlgorithm::ReadLabelImage(
   return image;
 }
 
-bool vtkCBC3DAlgorithm::ReadMesh(vtkInformationVector** inputVector, cbc3d::TetMesh& mesh)
+bool vtkCBC3DAlgorithm::ReadMesh(
+  vtkInformationVector** inputVector, cbc3d::TetMesh& mesh, cbc3d::LabelCodes& codes)
 {
+  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::GetData(inputVector[0]);
+  std::vector<std::int64_t> values(this->BackgroundLabels.begin(), this->BackgroundLabels.end());
   std::string error;
-  if (!vtkCBC3DConvert::FromUnstructuredGrid(vtkUnstructuredGrid::GetData(inputVector[0]), mesh, error))
+  const bool read = vtkCBC3DConvert::MeshLabelValues(grid, values, error) &&
+    vtkCBC3DConvert::FromUnstructuredGrid(
+      grid, mesh, error, codes = cbc3d::LabelCodes::ForValues(std::move(values)));
+  if (!read)
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  return true;
+}
+
+bool vtkCBC3DAlgorithm::ReadMeshAndImage(vtkInformationVector** inputVector, cbc3d::TetMesh& mesh,
+  std::shared_ptr<const cbc3d::LabelImage>& image)
+{
+  vtkUnstructuredGrid* grid = vtkUnstructuredGrid::GetData(inputVector[0]);
+  std::vector<std::int64_t> meshValues;
+  std::string error;
+  if (!vtkCBC3DConvert::MeshLabelValues(grid, meshValues, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  image = this->ReadLabelImage(inputVector, meshValues);
+  if (!image)
+  {
+    return false;
+  }
+  if (!vtkCBC3DConvert::FromUnstructuredGrid(grid, mesh, error, image->Codes))
   {
     vtkErrorMacro(<< error);
     return false;
@@ -131,7 +162,7 @@ void vtkCBC3DAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "BackgroundLabels:";
-  for (const int label : this->BackgroundLabels)
+  for (const vtkTypeInt64 label : this->BackgroundLabels)
   {
     os << " " << label;
   }

@@ -25,6 +25,7 @@ class vtkUnstructuredGrid;
 
 namespace cbc3d
 {
+class LabelCodes;
 class Status;
 struct LabelImage;
 struct TetMesh;
@@ -38,13 +39,13 @@ public:
 
   ///@{
   /**
-   * Labels that are not tissue. Default: the single label 0.
+   * Labels that are not tissue, any 64-bit values. Default: the single label 0.
    */
-  void AddBackgroundLabel(int label);
+  void AddBackgroundLabel(vtkTypeInt64 label);
   void RemoveAllBackgroundLabels();
-  void SetBackgroundLabel(int label);
+  void SetBackgroundLabel(vtkTypeInt64 label);
   int GetNumberOfBackgroundLabels() const;
-  int GetBackgroundLabel(int index) const;
+  vtkTypeInt64 GetBackgroundLabel(int index) const;
   ///@}
 
   ///@{
@@ -80,17 +81,20 @@ protected:
   ~vtkCBC3DAlgorithm() override = default;
 
   /**
-   * The core's view of the label image on its port, shared with the other stages that read
-   * the same image (vtkCBC3DLabelImageCache). On failure reports the problem with
-   * vtkErrorMacro and returns null.
+   * The core's view of the label image on its port, its labels coded by image.Codes, which
+   * can also code `otherValues` (a mesh's labels); shared with the other stages that read the
+   * same image (vtkCBC3DLabelImageCache). On failure reports the problem with vtkErrorMacro
+   * and returns null.
    */
-  std::shared_ptr<const cbc3d::LabelImage> ReadLabelImage(vtkInformationVector** inputVector);
+  std::shared_ptr<const cbc3d::LabelImage> ReadLabelImage(
+    vtkInformationVector** inputVector, const std::vector<std::int64_t>& otherValues = {});
 
   /**
-   * Reads the labelled tet mesh on port 0 (filters whose image is on port 1). On failure
-   * reports the problem with vtkErrorMacro and returns false.
+   * Reads the labelled tet mesh on port 0 (filters whose image is on port 1), its labels
+   * coded by `codes`, made for them and the background labels. On failure reports the problem
+   * with vtkErrorMacro and returns false.
    */
-  bool ReadMesh(vtkInformationVector** inputVector, cbc3d::TetMesh& mesh);
+  bool ReadMesh(vtkInformationVector** inputVector, cbc3d::TetMesh& mesh, cbc3d::LabelCodes& codes);
 
   /**
    * The end of RequestData when a core function did not succeed: a stop asked by the user
@@ -99,16 +103,16 @@ protected:
    */
   int EndOnFailure(const cbc3d::Status& status, vtkUnstructuredGrid* output);
 
-  /// ReadMesh, then ReadLabelImage: the inputs of the filters that refine or move a mesh.
+  /**
+   * The mesh on port 0 and the image on port 1, their labels coded by one table (image->Codes):
+   * the inputs of the filters that refine, move or measure a mesh against its image.
+   */
   bool ReadMeshAndImage(vtkInformationVector** inputVector, cbc3d::TetMesh& mesh,
-    std::shared_ptr<const cbc3d::LabelImage>& image)
-  {
-    return this->ReadMesh(inputVector, mesh) && (image = this->ReadLabelImage(inputVector));
-  }
+    std::shared_ptr<const cbc3d::LabelImage>& image);
 
   int ImagePort;
   bool ImageOptional;
-  std::vector<int> BackgroundLabels = { 0 };
+  std::vector<vtkTypeInt64> BackgroundLabels = { 0 };
   int NumberOfThreads = 0;
 
 private:

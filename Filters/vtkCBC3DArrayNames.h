@@ -3,8 +3,10 @@
  * @brief The names of every array the CBC3D filters write, in one place.
  *
  * Cell data:
- * - `Label` (vtkIntArray): the tissue label of each tet, the label value of the input image
- *   unchanged (a tissue labelled 128 in the image is 128 in the mesh).
+ * - `Label` (vtkIntArray; a 64-bit integer array when a label does not fit 32 bits): the tissue
+ *   label of each tet, the label value of the input image unchanged (a tissue labelled 128 in
+ *   the image is 128 in the mesh, 5000000000 is 5000000000). `BoundaryLabels`, `FidelityLabel`
+ *   and `TissueLabel` follow the same rule.
  * - `MinDihedralAngle`, `MaxDihedralAngle` (vtkDoubleArray, degrees): per tet.
  * - `RefinementLevel` (vtkUnsignedCharArray): red splits between the lattice and the tet.
  *

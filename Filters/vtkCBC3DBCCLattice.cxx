@@ -34,7 +34,7 @@ int vtkCBC3DBCCLattice::RequestData(
   {
     return this->EndOnFailure(status, output);
   }
-  vtkCBC3DConvert::ToUnstructuredGrid(mesh, output);
+  vtkCBC3DConvert::ToUnstructuredGrid(mesh, image->Codes, output);
   vtkNew<vtkDoubleArray> edge;
   edge->SetName(vtkCBC3DArrayNames::LatticeEdgeLength);
   edge->InsertNextValue(params.EdgeLength > 0 ? params.EdgeLength : cbc3d::DefaultLatticeEdgeLength(*image));

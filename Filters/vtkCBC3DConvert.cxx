@@ -1,12 +1,11 @@
 #include "vtkCBC3DConvert.h"
 
 #include "vtkCBC3DArrayNames.h"
+#include "vtkCBC3DLabelValues.h"
 
 #include <vtkAlgorithm.h>
-#include <vtkArrayDispatch.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
-#include <vtkDataArrayRange.h>
 #include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
@@ -19,48 +18,8 @@
 #include <vtkPoints.h>
 #include <vtkUnstructuredGrid.h>
 
-#include <cmath>
 #include <cstdint>
-#include <limits>
 #include <sstream>
-
-namespace
-{
-// Copies any real-valued array into int32 labels, refusing fractions and values out of range.
-struct CopyLabels
-{
-  std::int32_t* Out = nullptr;
-  std::string Error;
-
-  template <typename ArrayT>
-  void operator()(ArrayT* array)
-  {
-    constexpr double lowest = std::numeric_limits<std::int32_t>::min();
-    constexpr double highest = std::numeric_limits<std::int32_t>::max();
-    std::int64_t i = 0;
-    for (const auto value : vtk::DataArrayValueRange<1>(array))
-    {
-      const double v = static_cast<double>(value);
-      if (!(v >= lowest && v <= highest))
-      {
-        std::ostringstream msg;
-        msg << "the label array holds " << v << ", which is not a 32-bit integer label";
-        this->Error = msg.str();
-        return;
-      }
-      if (v != std::floor(v))
-      {
-        std::ostringstream msg;
-        msg << "the label array holds the non-integral value " << v
-            << "; a label map needs whole-number labels";
-        this->Error = msg.str();
-        return;
-      }
-      this->Out[i++] = static_cast<std::int32_t>(v);
-    }
-  }
-};
-} // namespace
 
 namespace vtkCBC3DConvert
 {
@@ -86,7 +45,8 @@ vtkDataArray* ChooseLabelArray(vtkInformation* arrayRequest, vtkImageData* image
 }
 
 bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
-  const std::vector<int>& backgroundLabels, cbc3d::LabelImage& out, std::string& error)
+  const std::vector<vtkTypeInt64>& backgroundLabels, cbc3d::LabelImage& out, std::string& error,
+  std::vector<std::int64_t> otherValues)
 {
   if (!image)
   {
@@ -144,20 +104,22 @@ bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
       out.Direction(r, c) = direction->GetElement(r, c);
     }
   }
-  out.BackgroundLabels.assign(backgroundLabels.begin(), backgroundLabels.end());
 
-  out.Labels.resize(labels->GetNumberOfTuples());
-  CopyLabels copy;
-  copy.Out = out.Labels.data();
-  if (!vtkArrayDispatch::Dispatch::Execute(labels, copy))
+  // One table for the image's labels, the background labels and the caller's (a mesh's), so
+  // every background label has a code too.
+  if (!vtkCBC3DLabelValues::CollectValues(labels, otherValues, error))
   {
-    copy(labels); // arrays the dispatcher does not know, through the generic API
-  }
-  if (!copy.Error.empty())
-  {
-    error = copy.Error;
     return false;
   }
+  otherValues.insert(otherValues.end(), backgroundLabels.begin(), backgroundLabels.end());
+  out.Codes = cbc3d::LabelCodes::ForValues(std::move(otherValues));
+  out.BackgroundLabels.assign(backgroundLabels.size(), 0);
+  for (std::size_t b = 0; b < backgroundLabels.size(); ++b)
+  {
+    out.Codes.FindCode(backgroundLabels[b], out.BackgroundLabels[b]);
+  }
+  out.Labels.resize(labels->GetNumberOfTuples());
+  vtkCBC3DLabelValues::ToCodes(labels, out.Codes, out.Labels.data());
   const cbc3d::Status valid = cbc3d::ValidateLabelImage(out);
   if (!valid.IsOk())
   {
@@ -168,7 +130,8 @@ bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   return true;
 }
 
-void ToUnstructuredGrid(const cbc3d::TetMesh& mesh, vtkUnstructuredGrid* out)
+void ToUnstructuredGrid(
+  const cbc3d::TetMesh& mesh, const cbc3d::LabelCodes& codes, vtkUnstructuredGrid* out)
 {
   const vtkIdType pointCount = static_cast<vtkIdType>(mesh.Points.size());
   const vtkIdType tetCount = static_cast<vtkIdType>(mesh.Tets.size());
@@ -185,9 +148,6 @@ void ToUnstructuredGrid(const cbc3d::TetMesh& mesh, vtkUnstructuredGrid* out)
   offsets->SetNumberOfValues(tetCount + 1);
   vtkNew<vtkIdTypeArray> connectivity;
   connectivity->SetNumberOfValues(4 * tetCount);
-  vtkNew<vtkIntArray> labels;
-  labels->SetName(vtkCBC3DArrayNames::Label);
-  labels->SetNumberOfValues(tetCount);
   for (vtkIdType t = 0; t < tetCount; ++t)
   {
     offsets->SetValue(t, 4 * t);
@@ -195,7 +155,6 @@ void ToUnstructuredGrid(const cbc3d::TetMesh& mesh, vtkUnstructuredGrid* out)
     {
       connectivity->SetValue(4 * t + v, mesh.Tets[t][v]);
     }
-    labels->SetValue(t, mesh.Labels[t]);
   }
   offsets->SetValue(tetCount, 4 * tetCount);
 
@@ -204,7 +163,8 @@ void ToUnstructuredGrid(const cbc3d::TetMesh& mesh, vtkUnstructuredGrid* out)
   out->Initialize();
   out->SetPoints(points);
   out->SetCells(VTK_TETRA, cells);
-  out->GetCellData()->AddArray(labels);
+  out->GetCellData()->AddArray(
+    vtkCBC3DLabelValues::FromCodes(mesh.Labels, codes, vtkCBC3DArrayNames::Label));
   out->GetCellData()->SetActiveScalars(vtkCBC3DArrayNames::Label);
 }
 
@@ -215,10 +175,8 @@ void ToPolyData(const cbc3d::TaggedMesh& mesh, vtkPolyData* out)
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   vtkNew<vtkCellArray> triangles;
-  vtkNew<vtkIntArray> sides;
-  sides->SetName(vtkCBC3DArrayNames::BoundaryLabels);
-  sides->SetNumberOfComponents(2);
-  sides->SetNumberOfTuples(static_cast<vtkIdType>(mesh.Triangles.size()));
+  std::vector<std::int32_t> sides;
+  sides.reserve(2 * mesh.Triangles.size());
   vtkNew<vtkIntArray> surfaceIds;
   surfaceIds->SetName(vtkCBC3DArrayNames::SurfaceId);
   surfaceIds->SetNumberOfValues(static_cast<vtkIdType>(mesh.Triangles.size()));
@@ -235,33 +193,50 @@ void ToPolyData(const cbc3d::TaggedMesh& mesh, vtkPolyData* out)
         ids[k] = newId[p];
       }
       triangles->InsertNextCell(3, ids);
-      sides->SetTypedComponent(static_cast<vtkIdType>(t), 0, mesh.Triangles[t].Sides[0]);
-      sides->SetTypedComponent(static_cast<vtkIdType>(t), 1, mesh.Triangles[t].Sides[1]);
+      sides.insert(sides.end(), mesh.Triangles[t].Sides.begin(), mesh.Triangles[t].Sides.end());
       surfaceIds->SetValue(static_cast<vtkIdType>(t), mesh.Surfaces[s].Id);
     }
   }
   out->Initialize();
   out->SetPoints(points);
   out->SetPolys(triangles);
-  out->GetCellData()->AddArray(sides);
+  out->GetCellData()->AddArray(
+    vtkCBC3DLabelValues::FromCodes(sides, mesh.Codes, vtkCBC3DArrayNames::BoundaryLabels, 2));
   out->GetCellData()->AddArray(surfaceIds);
 }
 
-bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, cbc3d::TetMesh& out, std::string& error)
+vtkDataArray* MeshLabels(vtkUnstructuredGrid* grid, std::string& error)
 {
-  out = cbc3d::TetMesh();
+  vtkDataArray* labels = grid ? grid->GetCellData()->GetArray(vtkCBC3DArrayNames::Label) : nullptr;
   if (!grid)
   {
     error = "no input mesh";
-    return false;
   }
-  vtkDataArray* labels = grid->GetCellData()->GetArray(vtkCBC3DArrayNames::Label);
-  const vtkIdType cellCount = grid->GetNumberOfCells();
-  if (!labels || labels->GetNumberOfComponents() != 1 || labels->GetNumberOfTuples() != cellCount)
+  else if (!labels || labels->GetNumberOfComponents() != 1 ||
+    labels->GetNumberOfTuples() != grid->GetNumberOfCells())
   {
     error = "the mesh has no one-component 'Label' cell array";
+    labels = nullptr;
+  }
+  return labels;
+}
+
+bool MeshLabelValues(vtkUnstructuredGrid* grid, std::vector<std::int64_t>& values, std::string& error)
+{
+  vtkDataArray* labels = MeshLabels(grid, error);
+  return labels && vtkCBC3DLabelValues::CollectValues(labels, values, error);
+}
+
+bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, cbc3d::TetMesh& out, std::string& error,
+  const cbc3d::LabelCodes& codes)
+{
+  out = cbc3d::TetMesh();
+  vtkDataArray* labels = MeshLabels(grid, error);
+  if (!labels)
+  {
     return false;
   }
+  const vtkIdType cellCount = grid->GetNumberOfCells();
   out.Points.resize(grid->GetNumberOfPoints());
   for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
   {
@@ -282,19 +257,30 @@ bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, cbc3d::TetMesh& out, std::s
     {
       out.Tets[c][v] = ids->GetId(v);
     }
-    out.Labels[c] = static_cast<std::int32_t>(labels->GetTuple1(c));
+  }
+  if (!vtkCBC3DLabelValues::ToCodes(labels, codes, out.Labels.data()))
+  {
+    error = "the mesh's 'Label' array holds a label that is not a 32-bit integer, or not an integer";
+    return false;
   }
   return true;
 }
 
-bool ToTaggedMesh(vtkUnstructuredGrid* grid, std::int32_t outside, cbc3d::TaggedMesh& out, std::string& error)
+bool ToTaggedMesh(vtkUnstructuredGrid* grid, vtkTypeInt64 outside, cbc3d::TaggedMesh& out, std::string& error)
 {
-  cbc3d::TetMesh tets;
-  if (!FromUnstructuredGrid(grid, tets, error))
+  std::vector<std::int64_t> values{ outside };
+  if (!MeshLabelValues(grid, values, error))
   {
     return false;
   }
-  const cbc3d::Status status = cbc3d::BuildTaggedMesh(tets, outside, out);
+  const cbc3d::LabelCodes codes = cbc3d::LabelCodes::ForValues(std::move(values));
+  cbc3d::TetMesh tets;
+  std::int32_t outsideCode = 0;
+  if (!FromUnstructuredGrid(grid, tets, error, codes) || !codes.FindCode(outside, outsideCode))
+  {
+    return false;
+  }
+  const cbc3d::Status status = cbc3d::BuildTaggedMesh(tets, outsideCode, out, codes);
   error = status.GetMessage();
   return status.IsOk();
 }

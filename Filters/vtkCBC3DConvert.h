@@ -8,11 +8,15 @@
 #ifndef vtkCBC3DConvert_h
 #define vtkCBC3DConvert_h
 
+#include "cbc3d/LabelCodes.h"
 #include "cbc3d/LabelImage.h"
 #include "cbc3d/Progress.h"
 #include "cbc3d/TaggedMesh.h"
 #include "cbc3d/TetMesh.h"
 
+#include <vtkType.h>
+
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -36,32 +40,46 @@ vtkDataArray* ChooseLabelArray(vtkInformation* arrayRequest, vtkImageData* image
 
 /**
  * Copies a label image into the core's frame and label storage. The array must be point data
- * with one component, of an integer type or a float type whose values are all integers, and
- * every value must fit in 32 bits. Returns false with a one-line message otherwise, or when the
- * image is not 3-D or holds no tissue.
+ * with one component, of an integer type or a float type whose values are all integers, each a
+ * 64-bit signed integer. The core's labels are the codes of `out.Codes` (cbc3d::LabelCodes),
+ * made for the image's labels, the background labels and `otherValues` (a mesh's labels, to
+ * share one table): the values themselves when all fit in 32 bits. Returns false with a
+ * one-line message for a bad array, or when the image is not 3-D or holds no tissue.
  */
 bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
-  const std::vector<int>& backgroundLabels, cbc3d::LabelImage& out, std::string& error);
+  const std::vector<vtkTypeInt64>& backgroundLabels, cbc3d::LabelImage& out, std::string& error,
+  std::vector<std::int64_t> otherValues = {});
+
+/// Appends the distinct values of the grid's `Label` cell array; false with a one-line message.
+bool MeshLabelValues(vtkUnstructuredGrid* grid, std::vector<std::int64_t>& values, std::string& error);
 
 /**
- * Copies a tetrahedral grid with a `Label` cell array into the core mesh. Returns false with a
- * one-line message when a cell is not a VTK_TETRA or the Label array is missing.
+ * Copies a tetrahedral grid with a `Label` cell array into the core mesh, labels as codes of
+ * `codes` (by default the values themselves, which must then fit in 32 bits). Returns false
+ * with a one-line message when a cell is not a VTK_TETRA, the Label array is missing, or a
+ * label has no code.
  */
-bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, cbc3d::TetMesh& out, std::string& error);
+bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, cbc3d::TetMesh& out, std::string& error,
+  const cbc3d::LabelCodes& codes = cbc3d::LabelCodes());
 
 /**
  * The tagged mesh of a tetrahedral grid with a `Label` cell array (FromUnstructuredGrid, then
- * cbc3d::BuildTaggedMesh with `outside` standing for the outside); false with a one-line message.
+ * cbc3d::BuildTaggedMesh with `outside` standing for the outside), its labels any 64-bit
+ * values (TaggedMesh::Codes); false with a one-line message.
  */
-bool ToTaggedMesh(vtkUnstructuredGrid* grid, std::int32_t outside, cbc3d::TaggedMesh& out, std::string& error);
+bool ToTaggedMesh(vtkUnstructuredGrid* grid, vtkTypeInt64 outside, cbc3d::TaggedMesh& out, std::string& error);
 
-/// Fills `out` with the mesh's points, VTK_TETRA cells and the `Label` cell array.
-void ToUnstructuredGrid(const cbc3d::TetMesh& mesh, vtkUnstructuredGrid* out);
+/**
+ * Fills `out` with the mesh's points, VTK_TETRA cells and the `Label` cell array: the values of
+ * the mesh's codes, a vtkIntArray when they fit in 32 bits, else a 64-bit integer array.
+ */
+void ToUnstructuredGrid(const cbc3d::TetMesh& mesh, const cbc3d::LabelCodes& codes, vtkUnstructuredGrid* out);
 
 /**
  * Fills `out` with the tagged mesh's boundary and interface triangles over the points they use:
- * cell data `BoundaryLabels` (vtkIntArray, 2 components: the label behind each triangle, then
- * the label its normal points into; TaggedMesh's rule) and `SurfaceId` (TaggedSurface::Id).
+ * cell data `BoundaryLabels` (2 components: the label behind each triangle, then the label its
+ * normal points into, TaggedMesh's rule; a vtkIntArray, or a 64-bit one for larger labels) and
+ * `SurfaceId` (TaggedSurface::Id).
  */
 void ToPolyData(const cbc3d::TaggedMesh& mesh, vtkPolyData* out);
 

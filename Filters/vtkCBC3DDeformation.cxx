@@ -37,7 +37,7 @@ const char* vtkCBC3DDeformation::GetTargetPlacementAsString() const
   return this->TargetPlacement == VOXEL_FACE ? "VoxelFace" : "VoxelCentre";
 }
 
-void vtkCBC3DDeformation::SetTissueYoungModulus(int label, double modulus)
+void vtkCBC3DDeformation::SetTissueYoungModulus(vtkTypeInt64 label, double modulus)
 {
   this->YoungModuli[label] = modulus;
   this->Modified();
@@ -88,7 +88,11 @@ int vtkCBC3DDeformation::RequestData(
   params.DefaultMaterial.PoissonRatio = this->PoissonRatio;
   for (const auto& entry : this->YoungModuli)
   {
-    params.Materials[entry.first] = cbc3d::Material{ entry.second, this->PoissonRatio };
+    std::int32_t code = 0;
+    if (image->Codes.FindCode(entry.first, code)) // a tissue the image lacks needs no material
+    {
+      params.Materials[code] = cbc3d::Material{ entry.second, this->PoissonRatio };
+    }
   }
   params.NumberOfThreads = this->NumberOfThreads;
   cbc3d::TetMesh moved;

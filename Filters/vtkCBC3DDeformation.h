@@ -137,7 +137,7 @@ public:
    */
   vtkSetMacro(PoissonRatio, double);
   vtkGetMacro(PoissonRatio, double);
-  void SetTissueYoungModulus(int label, double modulus);
+  void SetTissueYoungModulus(vtkTypeInt64 label, double modulus);
   void RemoveAllTissueYoungModuli();
   ///@}
 
@@ -156,7 +156,7 @@ protected:
   bool RigidAlignment = true;
   bool KeepVolumes = true;
   double PoissonRatio = 0.3;
-  std::map<int, double> YoungModuli;
+  std::map<vtkTypeInt64, double> YoungModuli;
 
 private:
   vtkCBC3DDeformation(const vtkCBC3DDeformation&) = delete;

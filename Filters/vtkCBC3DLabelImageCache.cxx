@@ -7,6 +7,7 @@
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
 
+#include <algorithm>
 #include <mutex>
 #include <tuple>
 
@@ -20,7 +21,7 @@ struct Key
   vtkMTimeType LabelsTime = 0;
   const vtkImageData* Image = nullptr;
   vtkMTimeType ImageTime = 0;
-  std::vector<int> BackgroundLabels;
+  std::vector<vtkTypeInt64> BackgroundLabels;
 
   bool operator==(const Key& other) const
   {
@@ -32,26 +33,35 @@ struct Key
 std::mutex CacheMutex;
 Key CachedKey;
 std::shared_ptr<const cbc3d::LabelImage> Cached;
+
+// Whether every value has a code in the image's table.
+bool Codes(const cbc3d::LabelImage& image, const std::vector<std::int64_t>& values)
+{
+  std::int32_t code = 0;
+  return std::all_of(values.begin(), values.end(),
+    [&](std::int64_t value) { return image.Codes.FindCode(value, code); });
+}
 } // namespace
 
 namespace vtkCBC3DLabelImageCache
 {
 std::shared_ptr<const cbc3d::LabelImage> Get(vtkImageData* image, vtkDataArray* labels,
-  const std::vector<int>& backgroundLabels, std::string& error)
+  const std::vector<vtkTypeInt64>& backgroundLabels, const std::vector<std::int64_t>& otherValues,
+  std::string& error)
 {
   Key key;
   if (image && labels)
   {
     key = Key{ labels, labels->GetMTime(), image, image->GetMTime(), backgroundLabels };
     const std::lock_guard<std::mutex> lock(CacheMutex);
-    if (Cached && key == CachedKey)
+    if (Cached && key == CachedKey && Codes(*Cached, otherValues))
     {
       return Cached;
     }
     Cached.reset(); // stale: let it go before converting, so two images are not held at once
   }
   auto converted = std::make_shared<cbc3d::LabelImage>();
-  if (!vtkCBC3DConvert::ToLabelImage(image, labels, backgroundLabels, *converted, error))
+  if (!vtkCBC3DConvert::ToLabelImage(image, labels, backgroundLabels, *converted, error, otherValues))
   {
     return nullptr;
   }

@@ -12,6 +12,9 @@
 #ifndef vtkCBC3DLabelImageCache_h
 #define vtkCBC3DLabelImageCache_h
 
+#include <vtkType.h> // For vtkTypeInt64
+
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,10 +28,13 @@ struct LabelImage;
 
 namespace vtkCBC3DLabelImageCache
 {
-/// The label image of `image`'s array `labels` with these background labels: the cached one
-/// when nothing changed since it was converted. Null, with `error` set, for unusable input.
+/// The label image of `image`'s array `labels` with these background labels, its codes able to
+/// stand for `otherValues` too (a mesh's labels): the cached one when nothing changed since it
+/// was converted and its codes cover those values (codes keep the values' order, so any table
+/// that covers them gives the same mesh). Null, with `error` set, for unusable input.
 std::shared_ptr<const cbc3d::LabelImage> Get(vtkImageData* image, vtkDataArray* labels,
-  const std::vector<int>& backgroundLabels, std::string& error);
+  const std::vector<vtkTypeInt64>& backgroundLabels, const std::vector<std::int64_t>& otherValues,
+  std::string& error);
 }
 
 #endif

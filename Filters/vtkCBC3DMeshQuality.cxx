@@ -2,6 +2,7 @@
 
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DConvert.h"
+#include "vtkCBC3DLabelValues.h"
 
 #include "cbc3d/MeshTopology.h"
 #include "cbc3d/Parallel.h"
@@ -98,7 +99,7 @@ vtkSmartPointer<vtkStaticPointLocator> MakeLocator(
 // The topology arrays: the whole body's, then one value per tissue row (`labels`, ascending).
 // `image` is null without the label image.
 void AddTopologyFields(vtkFieldData* fields, const cbc3d::MeshTopology& topology,
-  const cbc3d::ImageTopology* image, const std::vector<int>& labels)
+  const cbc3d::ImageTopology* image, const std::vector<std::int32_t>& labels)
 {
   namespace names = vtkCBC3DArrayNames;
   const cbc3d::RegionTopology& whole = topology.Whole;
@@ -206,10 +207,11 @@ double VolumeOf(const std::map<std::int32_t, double>& volumes, int label)
 // One value per tissue row for counts, angles and volumes; with the image, its volumes and the
 // distances, per tissue and for the whole mesh.
 void AddTissueFields(vtkFieldData* fields, const std::vector<TissueRow>& rows,
-  const std::map<std::int32_t, double>& meshVolumes, const std::map<std::int32_t, double>* imageVolumes)
+  const std::map<std::int32_t, double>& meshVolumes, const std::map<std::int32_t, double>* imageVolumes,
+  const cbc3d::LabelCodes& codes)
 {
   namespace names = vtkCBC3DArrayNames;
-  std::vector<int> labels;
+  std::vector<std::int32_t> labels;
   std::vector<vtkIdType> tets, inverted, small, large;
   std::vector<double> minima, maxima, hausdorff, meshToImage, imageToMesh, hausdorff95, mean, volume, imageVolume;
   double meshHausdorff = rows.empty() ? NaN : 0.0, meshHausdorff95 = meshHausdorff;
@@ -238,7 +240,7 @@ void AddTissueFields(vtkFieldData* fields, const std::vector<TissueRow>& rows,
     distanceSum += std::isnan(d.Mean) ? NaN : d.Mean * static_cast<double>(row.DistanceCount);
     distanceCount += row.DistanceCount;
   }
-  AddFieldArray<vtkIntArray>(fields, names::TissueLabel, labels);
+  fields->AddArray(vtkCBC3DLabelValues::FromCodes(labels, codes, names::TissueLabel));
   AddFieldArray<vtkIdTypeArray>(fields, names::TissueTetCount, tets);
   AddFieldArray<vtkIdTypeArray>(fields, names::TissueInvertedTetCount, inverted);
   AddFieldArray<vtkIdTypeArray>(fields, names::TissueSmallAngleTetCount, small);
@@ -301,7 +303,7 @@ bool MeasureTissues(vtkCBC3DMeshQuality* filter, const cbc3d::TetMesh& mesh,
     const auto imageSide = boundary.find(label);
     if (image && (meshSide == surface.end() || imageSide == boundary.end()))
     {
-      vtkWarningWithObjectMacro(filter, << "tissue " << label << " is in the "
+      vtkWarningWithObjectMacro(filter, << "tissue " << image->Codes.ValueOf(label) << " is in the "
                       << (meshSide == surface.end() ? "image but not in the mesh"
                                                     : "mesh but not in the image")
                       << ": its distances are NaN");
@@ -335,12 +337,11 @@ int vtkCBC3DMeshQuality::RequestData(
   const bool withImage = this->HasImage(inputVector);
 
   cbc3d::TetMesh mesh;
-  if (!this->ReadMesh(inputVector, mesh))
-  {
-    return 0;
-  }
   std::shared_ptr<const cbc3d::LabelImage> image;
-  if (withImage && !(image = this->ReadLabelImage(inputVector)))
+  cbc3d::LabelCodes meshCodes;
+  const bool read = withImage ? this->ReadMeshAndImage(inputVector, mesh, image)
+                              : this->ReadMesh(inputVector, mesh, meshCodes);
+  if (!read)
   {
     return 0;
   }
@@ -365,8 +366,9 @@ int vtkCBC3DMeshQuality::RequestData(
   fields->DeepCopy(input->GetFieldData());
   AddOverallFields(fields, summary.Overall);
   const auto imageVolumes = withImage ? cbc3d::TissueImageVolumes(*image) : std::map<std::int32_t, double>();
-  AddTissueFields(fields, rows, cbc3d::TissueMeshVolumes(mesh), withImage ? &imageVolumes : nullptr);
-  std::vector<int> tissueLabels;
+  AddTissueFields(fields, rows, cbc3d::TissueMeshVolumes(mesh), withImage ? &imageVolumes : nullptr,
+    withImage ? image->Codes : meshCodes);
+  std::vector<std::int32_t> tissueLabels;
   for (const TissueRow& row : rows)
   {
     tissueLabels.push_back(row.Label);

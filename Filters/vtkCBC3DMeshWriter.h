@@ -42,8 +42,8 @@ public:
 
   ///@{
   /// The label that stands for the outside on boundary triangles (default 0).
-  vtkSetMacro(OutsideLabel, int);
-  vtkGetMacro(OutsideLabel, int);
+  vtkSetMacro(OutsideLabel, vtkTypeInt64);
+  vtkGetMacro(OutsideLabel, vtkTypeInt64);
   ///@}
 
 protected:
@@ -55,7 +55,7 @@ protected:
 
   char* FileName = nullptr;
   vtkTypeBool MshVersion22 = false;
-  int OutsideLabel = 0;
+  vtkTypeInt64 OutsideLabel = 0;
 
 private:
   vtkCBC3DMeshWriter(const vtkCBC3DMeshWriter&) = delete;

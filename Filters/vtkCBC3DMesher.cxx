@@ -104,7 +104,7 @@ int vtkCBC3DMesher::RequestData(
   {
     vtkCBC3DAlgorithm* filter = stage.Filter;
     filter->RemoveAllBackgroundLabels();
-    for (const int label : this->BackgroundLabels)
+    for (const vtkTypeInt64 label : this->BackgroundLabels)
     {
       filter->AddBackgroundLabel(label);
     }

@@ -2,6 +2,7 @@
 
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DConvert.h"
+#include "vtkCBC3DLabelValues.h"
 
 #include "cbc3d/Refinement.h"
 
@@ -52,7 +53,7 @@ int vtkCBC3DRefinement::RequestData(
   {
     return this->EndOnFailure(status, output);
   }
-  vtkCBC3DConvert::ToUnstructuredGrid(mesh, output);
+  vtkCBC3DConvert::ToUnstructuredGrid(mesh, image->Codes, output);
 
   namespace names = vtkCBC3DArrayNames;
   vtkNew<vtkUnsignedCharArray> levels;
@@ -82,8 +83,7 @@ int vtkCBC3DRefinement::RequestData(
   relabelled->SetName(names::RefinementRelabelledTets);
   relabelled->InsertNextValue(result.Relabelled);
   fields->AddArray(relabelled);
-  vtkNew<vtkIntArray> label;
-  label->SetName(names::FidelityLabel);
+  std::vector<std::int32_t> labels;
   vtkNew<vtkDoubleArray> f1, f2;
   f1->SetName(names::FidelityF1);
   f2->SetName(names::FidelityF2);
@@ -92,15 +92,15 @@ int vtkCBC3DRefinement::RequestData(
   kept->SetName(names::FidelityComponentsInMesh);
   for (const cbc3d::TissueFidelity& tissue : result.Tissues)
   {
-    label->InsertNextValue(tissue.Label);
+    labels.push_back(tissue.Label);
     f1->InsertNextValue(tissue.F1);
     f2->InsertNextValue(tissue.F2);
     components->InsertNextValue(tissue.Components);
     kept->InsertNextValue(tissue.ComponentsInMesh);
   }
-  for (vtkAbstractArray* array : { static_cast<vtkAbstractArray*>(label), static_cast<vtkAbstractArray*>(f1),
-         static_cast<vtkAbstractArray*>(f2), static_cast<vtkAbstractArray*>(components),
-         static_cast<vtkAbstractArray*>(kept) })
+  fields->AddArray(vtkCBC3DLabelValues::FromCodes(labels, image->Codes, names::FidelityLabel));
+  for (vtkAbstractArray* array : { static_cast<vtkAbstractArray*>(f1), static_cast<vtkAbstractArray*>(f2),
+         static_cast<vtkAbstractArray*>(components), static_cast<vtkAbstractArray*>(kept) })
   {
     fields->AddArray(array);
   }

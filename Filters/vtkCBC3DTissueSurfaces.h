@@ -36,8 +36,8 @@ public:
    * The label that stands for the outside on boundary triangles (default 0, the usual
    * background). It must not be a tissue label of the mesh.
    */
-  vtkSetMacro(OutsideLabel, int);
-  vtkGetMacro(OutsideLabel, int);
+  vtkSetMacro(OutsideLabel, vtkTypeInt64);
+  vtkGetMacro(OutsideLabel, vtkTypeInt64);
   ///@}
 
 protected:
@@ -48,7 +48,7 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
-  int OutsideLabel = 0;
+  vtkTypeInt64 OutsideLabel = 0;
 
 private:
   vtkCBC3DTissueSurfaces(const vtkCBC3DTissueSurfaces&) = delete;

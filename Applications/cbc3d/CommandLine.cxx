@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -32,6 +33,15 @@ bool ParseInt(const std::string& text, int& value)
   }
   value = static_cast<int>(parsed);
   return true;
+}
+
+// A label: any 64-bit signed integer.
+bool ParseLabel(const std::string& text, long long& value)
+{
+  char* end = nullptr;
+  errno = 0;
+  value = std::strtoll(text.c_str(), &end, 10);
+  return !text.empty() && end && *end == '\0' && errno != ERANGE;
 }
 
 // Checks every -o and --surfaces extension and that no file is named twice.
@@ -297,10 +307,10 @@ bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::
     {
       if (!value(text))
         return false;
-      int label = 0;
-      if (!ParseInt(text, label))
+      long long label = 0;
+      if (!ParseLabel(text, label))
       {
-        error = "--background must be an integer label, not '" + text + "'";
+        error = "--background must be an integer label (64 bits), not '" + text + "'";
         return false;
       }
       if (!backgroundGiven)

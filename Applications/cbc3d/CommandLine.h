@@ -19,7 +19,7 @@ struct CommandLineOptions
   std::string Targets = "face";   // where deformation targets sit: centre or face
   bool KeepVolumes = true;        // deformation ends with each tissue at its voxels' volume
   int Iterations = 5;      // 0 = no deformation
-  std::vector<int> BackgroundLabels = { 0 };
+  std::vector<long long> BackgroundLabels = { 0 };
   int Threads = 0;         // 0 = all cores
   std::string ReportPath;
   bool Quiet = false;

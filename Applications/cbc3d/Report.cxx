@@ -6,6 +6,7 @@
 #include <vtkFieldData.h>
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkVariant.h>
 
 #include <nlohmann/json.hpp>
 
@@ -119,7 +120,7 @@ void FormatTopology(std::ostringstream& out, const RunReport& report)
   for (const auto& [label, f] : report.Tissues)
   {
     char line[200];
-    std::snprintf(line, sizeof(line), "  %-6d  %8lld / %-11lld  %12lld  %18lld / %-8lld  %lld (%s)\n", label,
+    std::snprintf(line, sizeof(line), "  %-6lld  %8lld / %-11lld  %12lld  %18lld / %-8lld  %lld (%s)\n", label,
       f.FaceComponents, f.VertexComponents, f.HingedParts, f.NonManifoldEdges, f.NonManifoldVertices,
       f.SurfaceEuler, f.ImageSurfaceEuler ? std::to_string(*f.ImageSurfaceEuler).c_str() : "-");
     out << line;
@@ -164,7 +165,7 @@ bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
   report.Tissues.clear();
   for (vtkIdType i = 0; i < labels->GetNumberOfTuples(); ++i)
   {
-    TissueFigures& tissue = report.Tissues[static_cast<int>(labels->GetTuple1(i))];
+    TissueFigures& tissue = report.Tissues[labels->GetVariantValue(i).ToLongLong()];
     ReadTopology(mesh, "Tissue", i, tissue);
     read(names::TissueTetCount, i, tissue.Tets);
     read(names::TissueInvertedTetCount, i, tissue.Inverted);
@@ -189,7 +190,7 @@ bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
     report.RefinementStopReason = FieldText(mesh, names::RefinementStopReason);
     for (vtkIdType i = 0; i < fidelityLabels->GetNumberOfTuples(); ++i)
     {
-      TissueFigures& tissue = report.Tissues[static_cast<int>(fidelityLabels->GetTuple1(i))];
+      TissueFigures& tissue = report.Tissues[fidelityLabels->GetVariantValue(i).ToLongLong()];
       read(names::FidelityF1, i, tissue.F1);
       read(names::FidelityF2, i, tissue.F2);
       read(names::FidelityComponents, i, tissue.Components);
@@ -260,7 +261,7 @@ std::string FormatSummary(const RunReport& report)
     for (const auto& [label, f] : report.Tissues)
     {
       char line[160];
-      std::snprintf(line, sizeof(line), "  %-6d  %.4f  %.4f  %lld / %lld\n", label, f.F1, f.F2,
+      std::snprintf(line, sizeof(line), "  %-6lld  %.4f  %.4f  %lld / %lld\n", label, f.F1, f.F2,
         f.ComponentsInMesh, f.Components);
       out << line;
     }

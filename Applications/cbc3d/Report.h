@@ -54,7 +54,7 @@ struct SurfaceFigures
 {
   int Id = 0;
   std::string Name;
-  std::array<int, 2> Labels = { 0, 0 }; // behind the triangles, in front (the outside label)
+  std::array<long long, 2> Labels = { 0, 0 }; // behind the triangles, in front (the outside label)
   long long Triangles = 0;
 };
 
@@ -65,7 +65,7 @@ struct RunReport
   long long Points = 0;
   TissueFigures Overall;
   bool SolverReady = false; // no hinged part, no non-manifold edge or vertex anywhere
-  std::map<int, TissueFigures> Tissues;
+  std::map<long long, TissueFigures> Tissues; // by label value
   std::vector<std::pair<std::string, double>> Seconds; // per stage, in order
   int RefinementPasses = -1;                           // -1: no refinement
   std::string RefinementStopReason;

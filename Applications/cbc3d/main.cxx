@@ -66,7 +66,7 @@ struct ProgressLine
 void SetBackground(vtkCBC3DAlgorithm* filter, const CommandLineOptions& options)
 {
   filter->RemoveAllBackgroundLabels();
-  for (const int label : options.BackgroundLabels)
+  for (const long long label : options.BackgroundLabels)
   {
     filter->AddBackgroundLabel(label);
   }
@@ -138,7 +138,8 @@ void ReportSurfaces(const cbc3d::TaggedMesh& tagged, RunReport& report)
   for (std::size_t s = 0; s < tagged.Surfaces.size(); ++s)
   {
     const cbc3d::TaggedSurface& surface = tagged.Surfaces[s];
-    report.Surfaces.push_back({ surface.Id, surface.Name, { surface.Sides[0], surface.Sides[1] },
+    report.Surfaces.push_back({ surface.Id, surface.Name,
+      { cbc3d::LabelValue(tagged, surface.Sides[0]), cbc3d::LabelValue(tagged, surface.Sides[1]) },
       static_cast<long long>(tagged.SurfaceStart[s + 1] - tagged.SurfaceStart[s]) });
   }
 }

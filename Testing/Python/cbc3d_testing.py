@@ -53,7 +53,7 @@ def dihedral_angles(p):
 
 # NIfTI-1 datatype codes and struct formats.
 NIFTI_TYPES = {"uint8": (2, "B"), "int16": (4, "h"), "int32": (8, "i"), "float32": (16, "f"),
-               "rgb24": (128, "BBB")}
+               "rgb24": (128, "BBB"), "uint32": (768, "I"), "int64": (1024, "q"), "uint64": (1280, "Q")}
 
 
 def write_nifti(path, dims, values, dtype="int16", pixdim=(1.0, 1.0, 1.0, 1.0), qform_code=0,

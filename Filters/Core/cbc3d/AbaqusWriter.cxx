@@ -48,7 +48,7 @@ void WriteTissueSets(const TaggedMesh& mesh, std::ostream& out)
       if (mesh.Labels[t] == label)
         ids.push_back(t + 1);
     }
-    out << "*ELSET, ELSET=tissue_" << label << "\n";
+    out << "*ELSET, ELSET=tissue_" << LabelValue(mesh, label) << "\n";
     WriteIds(ids, out);
   }
 }

@@ -134,11 +134,19 @@ std::vector<char> NameArray(const std::vector<std::string>& names, std::size_t l
   return array;
 }
 
-// The block ids: the tissue labels when all are positive (Exodus ids are), else 1, 2, ...
+// The block ids: the tissue labels when all are positive and fit the file's 32-bit ids (Exodus
+// ids are positive), else 1, 2, ...; the block names carry the labels either way.
 std::vector<int> BlockIds(const TaggedMesh& mesh)
 {
-  std::vector<int> ids(mesh.Tissues.begin(), mesh.Tissues.end());
-  if (std::any_of(ids.begin(), ids.end(), [](int id) { return id <= 0; }))
+  std::vector<int> ids;
+  bool labelsFit = true;
+  for (const std::int32_t tissue : mesh.Tissues)
+  {
+    const std::int64_t value = LabelValue(mesh, tissue);
+    labelsFit = labelsFit && value > 0 && FitsInt32(value);
+    ids.push_back(static_cast<int>(value));
+  }
+  if (!labelsFit)
   {
     for (std::size_t b = 0; b < ids.size(); ++b)
       ids[b] = static_cast<int>(b + 1);
@@ -262,7 +270,7 @@ Status WriteExodus(const TaggedMesh& mesh, const std::string& path)
   std::vector<std::string> blockNames, sideNames;
   std::size_t nameLength = NameLength;
   for (const std::int32_t label : mesh.Tissues)
-    blockNames.push_back("tissue_" + std::to_string(label));
+    blockNames.push_back("tissue_" + std::to_string(LabelValue(mesh, label)));
   for (const TaggedSurface& surface : mesh.Surfaces)
     sideNames.push_back(surface.Name);
   for (const auto* names : { &blockNames, &sideNames })

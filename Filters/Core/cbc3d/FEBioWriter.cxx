@@ -12,7 +12,7 @@ void WriteMaterials(const TaggedMesh& mesh, std::ostream& out)
   out << "  <Material>\n";
   for (std::size_t k = 0; k < mesh.Tissues.size(); ++k)
   {
-    out << "    <material id=\"" << k + 1 << "\" name=\"tissue_" << mesh.Tissues[k]
+    out << "    <material id=\"" << k + 1 << "\" name=\"tissue_" << LabelValue(mesh, mesh.Tissues[k])
         << "\" type=\"isotropic elastic\">\n"
         << "      <density>1</density>\n      <E>1</E>\n      <v>0.3</v>\n    </material>\n";
   }
@@ -36,7 +36,7 @@ void WriteElements(const TaggedMesh& mesh, std::ostream& out)
 {
   for (const std::int32_t label : mesh.Tissues)
   {
-    out << "    <Elements type=\"tet4\" name=\"tissue_" << label << "\">\n";
+    out << "    <Elements type=\"tet4\" name=\"tissue_" << LabelValue(mesh, label) << "\">\n";
     for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
     {
       if (mesh.Labels[t] != label)
@@ -82,7 +82,8 @@ Status WriteFEBio(const TaggedMesh& mesh, std::ostream& out)
   out << "  </Mesh>\n  <MeshDomains>\n";
   for (const std::int32_t label : mesh.Tissues)
   {
-    out << "    <SolidDomain name=\"tissue_" << label << "\" mat=\"tissue_" << label << "\"/>\n";
+    const std::int64_t value = LabelValue(mesh, label);
+    out << "    <SolidDomain name=\"tissue_" << value << "\" mat=\"tissue_" << value << "\"/>\n";
   }
   out << "  </MeshDomains>\n</febio_spec>\n";
   return EndExport(out);

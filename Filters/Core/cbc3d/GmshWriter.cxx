@@ -18,7 +18,7 @@ void WritePhysicalNames(const TaggedMesh& mesh, std::ostream& out)
   }
   for (const std::int32_t label : mesh.Tissues)
   {
-    out << "3 " << label << " \"tissue_" << label << "\"\n";
+    out << "3 " << LabelValue(mesh, label) << " \"tissue_" << LabelValue(mesh, label) << "\"\n";
   }
   out << "$EndPhysicalNames\n";
 }
@@ -52,9 +52,9 @@ void WriteEntities41(const TaggedMesh& mesh, std::ostream& out)
   }
   for (const std::int32_t label : mesh.Tissues)
   {
-    out << label << " ";
+    out << LabelValue(mesh, label) << " ";
     WriteBox(mesh, out);
-    out << " 1 " << label << " 0\n";
+    out << " 1 " << LabelValue(mesh, label) << " 0\n";
   }
   out << "$EndEntities\n";
 }
@@ -62,7 +62,7 @@ void WriteEntities41(const TaggedMesh& mesh, std::ostream& out)
 void WriteNodes41(const TaggedMesh& mesh, std::ostream& out)
 {
   const std::size_t n = mesh.Points.size();
-  out << "$Nodes\n1 " << n << " 1 " << n << "\n3 " << mesh.Tissues.front() << " 0 " << n << "\n";
+  out << "$Nodes\n1 " << n << " 1 " << n << "\n3 " << LabelValue(mesh, mesh.Tissues.front()) << " 0 " << n << "\n";
   for (std::size_t i = 0; i < n; ++i)
   {
     out << i + 1 << "\n";
@@ -94,7 +94,7 @@ void WriteElements41(const TaggedMesh& mesh, std::ostream& out)
   const std::vector<std::size_t> counts = TetsPerTissue(mesh);
   for (std::size_t k = 0; k < mesh.Tissues.size(); ++k)
   {
-    out << "3 " << mesh.Tissues[k] << " " << GmshTetrahedron << " " << counts[k] << "\n";
+    out << "3 " << LabelValue(mesh, mesh.Tissues[k]) << " " << GmshTetrahedron << " " << counts[k] << "\n";
     for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
     {
       if (mesh.Labels[t] != mesh.Tissues[k])
@@ -135,7 +135,7 @@ void WriteElements22(const TaggedMesh& mesh, std::ostream& out)
   for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
   {
     const Tet& q = mesh.Tets[t];
-    const std::int32_t label = mesh.Labels[t];
+    const std::int64_t label = LabelValue(mesh, mesh.Labels[t]);
     out << tag++ << " " << GmshTetrahedron << " 2 " << label << " " << label << " " << q[0] + 1
         << " " << q[1] + 1 << " " << q[2] + 1 << " " << q[3] + 1 << "\n";
   }
@@ -150,10 +150,15 @@ Status WriteGmsh(const TaggedMesh& mesh, std::ostream& out, bool version22)
   {
     return ready;
   }
-  if (mesh.Tissues.front() <= 0)
+  if (LabelValue(mesh, mesh.Tissues.front()) <= 0)
   {
     return Status::Error("Gmsh needs positive physical tags, but tissue label " +
-      std::to_string(mesh.Tissues.front()) + " is not");
+      std::to_string(LabelValue(mesh, mesh.Tissues.front())) + " is not");
+  }
+  const Status fits = RequireInt32Tissues(mesh, "Gmsh", "its physical and entity tags are 32-bit integers");
+  if (!fits.IsOk())
+  {
+    return fits;
   }
   out << "$MeshFormat\n" << (version22 ? "2.2" : "4.1") << " 0 8\n$EndMeshFormat\n";
   WritePhysicalNames(mesh, out);

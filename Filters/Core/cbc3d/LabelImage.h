@@ -1,6 +1,7 @@
 #ifndef cbc3d_LabelImage_h
 #define cbc3d_LabelImage_h
 
+#include "cbc3d/LabelCodes.h"
 #include "cbc3d/Status.h"
 
 #include <Eigen/Core>
@@ -24,6 +25,7 @@ struct LabelImage
   Eigen::Matrix3d Direction = Eigen::Matrix3d::Identity();
   std::vector<std::int32_t> Labels;
   std::vector<std::int32_t> BackgroundLabels = { 0 };
+  LabelCodes Codes; // the values the labels stand for (the labels themselves unless larger)
 
   std::int64_t VoxelCount() const
   {

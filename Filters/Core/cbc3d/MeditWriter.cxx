@@ -24,6 +24,11 @@ Status WriteMedit(const TaggedMesh& mesh, std::ostream& out)
   {
     return ready;
   }
+  const Status fits = RequireInt32Tissues(mesh, "Medit", "its element refs are 32-bit integers");
+  if (!fits.IsOk())
+  {
+    return fits;
+  }
   out << "MeshVersionFormatted 2\n";
   WriteRefTable(mesh, out);
   out << "Dimension 3\nVertices\n" << mesh.Points.size() << "\n";
@@ -45,7 +50,7 @@ Status WriteMedit(const TaggedMesh& mesh, std::ostream& out)
   {
     const Tet& q = mesh.Tets[t];
     out << q[0] + 1 << " " << q[1] + 1 << " " << q[2] + 1 << " " << q[3] + 1 << " "
-        << mesh.Labels[t] << "\n";
+        << LabelValue(mesh, mesh.Labels[t]) << "\n";
   }
   out << "End\n";
   return EndExport(out);

@@ -39,11 +39,11 @@ TaggedTriangle MakeTriangle(const TetMesh& mesh, std::int64_t tet, const MeshFac
   return triangle;
 }
 
-std::string SurfaceName(const TaggedSurface& surface)
+std::string SurfaceName(const TaggedSurface& surface, const LabelCodes& codes)
 {
-  return surface.Boundary
-    ? "boundary_" + std::to_string(surface.Sides[0])
-    : "interface_" + std::to_string(surface.Sides[0]) + "_" + std::to_string(surface.Sides[1]);
+  const std::string first = std::to_string(codes.ValueOf(surface.Sides[0]));
+  return surface.Boundary ? "boundary_" + first
+                          : "interface_" + first + "_" + std::to_string(codes.ValueOf(surface.Sides[1]));
 }
 
 // Sorts the triangles into surfaces (boundaries first, then interfaces, each ascending) and
@@ -65,7 +65,7 @@ void GroupSurfaces(TaggedMesh& out)
       surface.Sides = out.Triangles[i].Sides;
       surface.Boundary = surface.Sides[1] == out.Outside;
       surface.Id = static_cast<int>(out.Surfaces.size()) + 1;
-      surface.Name = SurfaceName(surface);
+      surface.Name = SurfaceName(surface, out.Codes);
       out.Surfaces.push_back(surface);
       out.SurfaceStart.push_back(i);
     }
@@ -74,7 +74,8 @@ void GroupSurfaces(TaggedMesh& out)
 }
 } // namespace
 
-Status BuildTaggedMesh(const TetMesh& mesh, std::int32_t outside, TaggedMesh& out)
+Status BuildTaggedMesh(
+  const TetMesh& mesh, std::int32_t outside, TaggedMesh& out, const LabelCodes& codes)
 {
   const Status valid = ValidateTetMesh(mesh);
   if (!valid.IsOk())
@@ -86,12 +87,13 @@ Status BuildTaggedMesh(const TetMesh& mesh, std::int32_t outside, TaggedMesh& ou
   out.Tets = mesh.Tets;
   out.Labels = mesh.Labels;
   out.Outside = outside;
+  out.Codes = codes;
   out.Tissues = mesh.Labels;
   std::sort(out.Tissues.begin(), out.Tissues.end());
   out.Tissues.erase(std::unique(out.Tissues.begin(), out.Tissues.end()), out.Tissues.end());
   if (std::binary_search(out.Tissues.begin(), out.Tissues.end(), outside))
   {
-    return Status::Error("the outside label " + std::to_string(outside) +
+    return Status::Error("the outside label " + std::to_string(codes.ValueOf(outside)) +
       " is also a tissue label: choose another for the surfaces' outside");
   }
   for (const MeshFace& face : FindMeshFaces(mesh))
@@ -118,6 +120,20 @@ Status BuildTaggedMesh(const TetMesh& mesh, std::int32_t outside, TaggedMesh& ou
     out.Triangles.push_back(MakeTriangle(mesh, low, face, mesh.Labels[high]));
   }
   GroupSurfaces(out);
+  return Status::Ok();
+}
+
+Status RequireInt32Tissues(const TaggedMesh& mesh, const std::string& format, const std::string& why)
+{
+  for (const std::int32_t tissue : mesh.Tissues)
+  {
+    const std::int64_t value = LabelValue(mesh, tissue);
+    if (!FitsInt32(value))
+    {
+      return Status::Error(format + " cannot hold tissue label " + std::to_string(value) + ": " + why +
+        " (.vtu, .vtk, .inp, .feb and .exo keep any label)");
+    }
+  }
   return Status::Ok();
 }
 

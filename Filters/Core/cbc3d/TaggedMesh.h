@@ -1,6 +1,7 @@
 #ifndef cbc3d_TaggedMesh_h
 #define cbc3d_TaggedMesh_h
 
+#include "cbc3d/LabelCodes.h"
 #include "cbc3d/Status.h"
 #include "cbc3d/TetMesh.h"
 
@@ -51,12 +52,23 @@ struct TaggedMesh
   std::vector<TaggedTriangle> Triangles;
   std::vector<std::size_t> SurfaceStart; // Triangles of surface s: [SurfaceStart[s], SurfaceStart[s + 1])
   std::int32_t Outside = 0;              // the label that stands for the outside
+  LabelCodes Codes; // the label values that Labels, Tissues, Sides and Outside stand for
 };
+
+/// The value of a label of the mesh, as the writers write it.
+inline std::int64_t LabelValue(const TaggedMesh& mesh, std::int32_t label)
+{
+  return mesh.Codes.ValueOf(label);
+}
+
+/// An error naming `format` and `why` when a tissue's value does not fit in 32 bits.
+Status RequireInt32Tissues(const TaggedMesh& mesh, const std::string& format, const std::string& why);
 
 /// Builds the tagged mesh of a valid, conforming tet mesh. `outside` stands for the outside on
 /// boundary triangles; it must not be a tissue label (an error names the clash), nor may a face
-/// have more than two tets.
-Status BuildTaggedMesh(const TetMesh& mesh, std::int32_t outside, TaggedMesh& out);
+/// have more than two tets. The labels are codes of `codes` (LabelCodes.h), which names use.
+Status BuildTaggedMesh(
+  const TetMesh& mesh, std::int32_t outside, TaggedMesh& out, const LabelCodes& codes = LabelCodes());
 
 /// The index in Surfaces of the surface between `sides` (boundary: {tissue, Outside}), or -1.
 int FindSurface(const TaggedMesh& mesh, const std::array<std::int32_t, 2>& sides);

@@ -145,7 +145,10 @@ std::string WriteHeavyData(const TaggedMesh& mesh, const std::string& path)
   for (const Eigen::Vector3d& p : mesh.Points)
     xyz.insert(xyz.end(), { p.x(), p.y(), p.z() });
   file.Put(MeshGeometry, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, xyz, 3);
-  file.Put(TissueValues, H5T_STD_I32LE, H5T_NATIVE_INT32, mesh.Labels, 1);
+  std::vector<std::int32_t> tissues(mesh.Labels.size());
+  for (std::size_t t = 0; t < mesh.Labels.size(); ++t)
+    tissues[t] = static_cast<std::int32_t>(LabelValue(mesh, mesh.Labels[t]));
+  file.Put(TissueValues, H5T_STD_I32LE, H5T_NATIVE_INT32, tissues, 1);
   if (!mesh.Triangles.empty())
   {
     std::vector<std::int64_t> triangles;
@@ -245,6 +248,9 @@ Status WriteXdmf(const TaggedMesh& mesh, const std::string& path)
 {
   if (mesh.Tets.empty())
     return Status::Error("the mesh has no tetrahedra to write");
+  const Status fits = RequireInt32Tissues(mesh, "XDMF", "dolfinx's mesh tags are 32-bit integers");
+  if (!fits.IsOk())
+    return fits;
   const std::string h5 = XdmfHeavyDataPath(path);
   const std::string xdmfPart = TemporaryPath(path), h5Part = TemporaryPath(h5);
   const int xdmfSlot = PendingFiles::Add(xdmfPart), h5Slot = PendingFiles::Add(h5Part);

@@ -66,6 +66,34 @@ TEST(MeshExport, GmshRejectsTissueLabelZero)
   EXPECT_FALSE(WriteExport(mesh, ".msh", out).IsOk());
 }
 
+TEST(MeshExport, LabelsBeyond32BitsAreNamedOrRefused)
+{
+  // Codes 0, 1, 2 stand for -1 (the outside), 5000000000 and 6000000000.
+  const TaggedMesh mesh =
+    cbc3d::testing::TwoTaggedCubes(LabelCodes::ForValues({ -1, 5000000000, 6000000000 }));
+  EXPECT_EQ(mesh.Surfaces[2].Name, "interface_5000000000_6000000000");
+  const std::string abaqus = Export(mesh, ".inp");
+  EXPECT_TRUE(Has(abaqus, "*ELSET, ELSET=tissue_6000000000\n"));
+  EXPECT_TRUE(Has(abaqus, "boundary_5000000000"));
+  EXPECT_TRUE(Has(Export(mesh, ".feb"), "<SolidDomain name=\"tissue_5000000000\" mat=\"tissue_5000000000\"/>"));
+  for (const char* extension : { ".msh", ".mesh" })
+  {
+    std::ostringstream out;
+    const Status status = WriteExport(mesh, extension, out);
+    EXPECT_TRUE(Has(status.GetMessage(), "cannot hold tissue label 5000000000")) << status.GetMessage();
+  }
+}
+
+TEST(MeshExport, SmallTissuesWithALargeOutsideWriteTheirValues)
+{
+  // Codes 1 and 2 stand for 1 and 2, code 3 (the outside) for 5000000000.
+  const TaggedMesh mesh =
+    cbc3d::testing::TwoTaggedCubes(LabelCodes::ForValues({ 0, 1, 2, 5000000000 }), 3);
+  EXPECT_TRUE(Has(Export(mesh, ".msh"), "3 1 \"tissue_1\"\n3 2 \"tissue_2\"\n"));
+  const std::string medit = Export(mesh, ".mesh");
+  EXPECT_EQ(Count(medit.substr(medit.find("\nTetrahedra\n")), " 2\n"), 6u); // tissue 2's tets, ref 2
+}
+
 TEST(MeshExport, MeditRefsAreLabelsAndSurfaceIds)
 {
   const std::string text = Export(cbc3d::testing::TwoTaggedCubes(), ".mesh");

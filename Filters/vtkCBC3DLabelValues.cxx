@@ -1,0 +1,202 @@
+#include "vtkCBC3DLabelValues.h"
+
+#include <vtkArrayDispatch.h>
+#include <vtkDataArrayRange.h>
+#include <vtkIntArray.h>
+#include <vtkLongArray.h>
+#include <vtkTypeInt64Array.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <type_traits>
+
+namespace
+{
+// The exact 64-bit signed value of a label of any arithmetic type; false when there is none.
+template <typename T>
+bool ToLabelValue(T value, std::int64_t& out)
+{
+  if constexpr (std::is_floating_point_v<T>)
+  {
+    constexpr double limit = 9223372036854775808.0; // 2^63
+    if (!(value >= -limit && value < limit) || value != std::floor(value))
+    {
+      return false;
+    }
+  }
+  else if constexpr (std::is_unsigned_v<T> && sizeof(T) >= sizeof(std::int64_t))
+  {
+    if (value > static_cast<T>(std::numeric_limits<std::int64_t>::max()))
+    {
+      return false;
+    }
+  }
+  out = static_cast<std::int64_t>(value);
+  return true;
+}
+
+template <typename T>
+std::string Refusal(T value)
+{
+  std::ostringstream msg;
+  msg.precision(17);
+  if (std::is_floating_point_v<T> && std::isfinite(static_cast<double>(value)) &&
+    static_cast<double>(value) != std::floor(static_cast<double>(value)))
+  {
+    msg << "the label array holds the non-integral value " << +value
+        << "; a label map needs whole-number labels";
+  }
+  else
+  {
+    msg << "the label array holds " << +value
+        << ", which is not a label: labels are integers from -9223372036854775808 to "
+           "9223372036854775807";
+  }
+  return msg.str();
+}
+
+// The array for labels beyond 32 bits: a 64-bit vtkLongArray where long has 64 bits (Debian),
+// since the legacy .vtk writer names it "long", which meshio reads, and vtkTypeInt64Array
+// "vtktypeint64", which meshio 5.0's legacy reader refuses.
+using LargeLabelArray = std::conditional_t<VTK_SIZEOF_LONG == 8, vtkLongArray, vtkTypeInt64Array>;
+
+// Labels usually span a short range: a table of the values present beats sorting every voxel.
+constexpr std::int64_t LongestPresenceTable = std::int64_t(1) << 24;
+
+// Checks every value and gathers the distinct ones: through a table of the values present when
+// they span a short range (the usual case, and no copy of the image), else by sorting a copy.
+struct Collect
+{
+  std::vector<std::int64_t>* Values = nullptr;
+  std::string Error;
+
+  template <typename ArrayT>
+  void operator()(ArrayT* array)
+  {
+    const auto range = vtk::DataArrayValueRange<1>(array);
+    std::int64_t lowest = std::numeric_limits<std::int64_t>::max();
+    std::int64_t highest = std::numeric_limits<std::int64_t>::min();
+    for (const auto value : range)
+    {
+      std::int64_t label = 0;
+      if (!ToLabelValue(value, label))
+      {
+        this->Error = Refusal(value);
+        return;
+      }
+      lowest = std::min(lowest, label);
+      highest = std::max(highest, label);
+    }
+    if (range.size() == 0)
+    {
+      return;
+    }
+    std::int64_t label = 0;
+    if (highest / 2 - lowest / 2 < LongestPresenceTable / 2)
+    {
+      std::vector<bool> present(static_cast<std::size_t>(highest - lowest + 1), false);
+      for (const auto value : range)
+      {
+        ToLabelValue(value, label);
+        present[static_cast<std::size_t>(label - lowest)] = true;
+      }
+      for (std::size_t offset = 0; offset < present.size(); ++offset)
+        if (present[offset])
+          this->Values->push_back(lowest + static_cast<std::int64_t>(offset));
+      return;
+    }
+    std::vector<std::int64_t> all;
+    all.reserve(range.size());
+    for (const auto value : range)
+    {
+      ToLabelValue(value, label);
+      all.push_back(label);
+    }
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    this->Values->insert(this->Values->end(), all.begin(), all.end());
+  }
+};
+
+struct Encode
+{
+  const cbc3d::LabelCodes* Codes = nullptr;
+  std::int32_t* Out = nullptr;
+  bool Ok = true;
+
+  template <typename ArrayT>
+  void operator()(ArrayT* array)
+  {
+    std::int32_t* out = this->Out;
+    for (const auto value : vtk::DataArrayValueRange<1>(array))
+    {
+      std::int64_t label = 0;
+      if (!ToLabelValue(value, label) || !this->Codes->FindCode(label, *out++))
+      {
+        this->Ok = false;
+        return;
+      }
+    }
+  }
+};
+} // namespace
+
+namespace vtkCBC3DLabelValues
+{
+bool CollectValues(vtkDataArray* array, std::vector<std::int64_t>& values, std::string& error)
+{
+  Collect collect;
+  collect.Values = &values;
+  if (!vtkArrayDispatch::Dispatch::Execute(array, collect))
+  {
+    collect(array); // arrays the dispatcher does not know, through the generic API
+  }
+  error = collect.Error;
+  return error.empty();
+}
+
+bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, std::int32_t* out)
+{
+  Encode encode;
+  encode.Codes = &codes;
+  encode.Out = out;
+  if (!vtkArrayDispatch::Dispatch::Execute(array, encode))
+  {
+    encode(array);
+  }
+  return encode.Ok;
+}
+
+vtkSmartPointer<vtkDataArray> FromCodes(const std::vector<std::int32_t>& labels,
+  const cbc3d::LabelCodes& codes, const char* name, int components)
+{
+  const bool fits = std::all_of(labels.begin(), labels.end(),
+    [&](std::int32_t code) { return cbc3d::FitsInt32(codes.ValueOf(code)); });
+  vtkSmartPointer<vtkDataArray> array;
+  if (fits)
+  {
+    array = vtkSmartPointer<vtkIntArray>::New();
+  }
+  else
+  {
+    array = vtkSmartPointer<LargeLabelArray>::New();
+  }
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(labels.size()) / components);
+  if (auto* ints = vtkIntArray::SafeDownCast(array))
+  {
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      ints->SetValue(static_cast<vtkIdType>(i), static_cast<int>(codes.ValueOf(labels[i])));
+  }
+  else
+  {
+    auto* longs = LargeLabelArray::SafeDownCast(array);
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      longs->SetValue(static_cast<vtkIdType>(i), codes.ValueOf(labels[i]));
+  }
+  return array;
+}
+} // namespace vtkCBC3DLabelValues
