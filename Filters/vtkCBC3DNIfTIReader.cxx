@@ -45,6 +45,65 @@ double OrthonormalityError(vtkMatrix4x4* m)
   return error;
 }
 
+// The file that holds the voxels: the .img (.img.gz) beside an Analyze/NIfTI .hdr, otherwise
+// the file itself. Empty when a .hdr has no such file (the inner reader then says so).
+std::string VoxelFileName(const std::string& fileName)
+{
+  const std::string lower = vtksys::SystemTools::LowerCase(fileName);
+  for (const char* header : { ".hdr", ".hdr.gz" })
+  {
+    if (vtksys::SystemTools::StringEndsWith(lower, header))
+    {
+      const std::string stem = fileName.substr(0, fileName.size() - std::string(header).size());
+      for (const char* data : { ".img", ".img.gz" })
+      {
+        if (vtksys::SystemTools::FileExists(stem + data, true))
+        {
+          return stem + data;
+        }
+      }
+      return std::string();
+    }
+  }
+  return fileName;
+}
+
+// zlib's largest expansion: a deflate stream of n bytes inflates to at most 1032 n bytes. A
+// header that claims more voxel bytes than that is corrupt, and trusting it would make the
+// inner reader allocate the claimed size (a 480-byte file claiming 30000^3 voxels aborted the
+// cbc3d command in operator new).
+constexpr double LargestInflation = 1032.0;
+} // namespace
+
+bool vtkCBC3DNIfTIReader::VoxelsFitInFile()
+{
+  const std::string voxelFile = VoxelFileName(this->FileName);
+  if (voxelFile.empty())
+  {
+    return true;
+  }
+  int extent[6];
+  this->Reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  double claimed = this->Reader->GetNumberOfScalarComponents() *
+    double(vtkDataArray::GetDataTypeSize(this->Reader->GetDataScalarType()));
+  for (int a = 0; a < 3; ++a)
+  {
+    claimed *= double(extent[2 * a + 1]) - extent[2 * a] + 1.0;
+  }
+  const double fileBytes = double(vtksys::SystemTools::FileLength(voxelFile));
+  if (claimed <= LargestInflation * fileBytes)
+  {
+    return true;
+  }
+  vtkErrorMacro(<< "Cannot read NIfTI file " << this->FileName << ": its header claims "
+                << extent[1] - extent[0] + 1 << " x " << extent[3] - extent[2] + 1 << " x "
+                << extent[5] - extent[4] + 1 << " voxels (" << claimed
+                << " bytes), more than its " << fileBytes << " bytes of data can hold");
+  return false;
+}
+
+namespace
+{
 // Messages that the inner reader (and its executive) reported during one pass.
 struct ReaderMessages
 {
@@ -239,7 +298,7 @@ int vtkCBC3DNIfTIReader::RequestInformation(
   }
 
   this->Reader->SetFileName(this->FileName);
-  if (!this->RunReader(false) || !this->ComputeFrame())
+  if (!this->RunReader(false) || !this->VoxelsFitInFile() || !this->ComputeFrame())
   {
     return 0;
   }

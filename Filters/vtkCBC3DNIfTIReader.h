@@ -30,7 +30,8 @@
  * not rescaled by scl_slope/scl_inter. Only the first volume of a 4-D file is read.
  *
  * @warning A missing or unreadable file, or one that is not NIfTI, is reported with
- * vtkErrorMacro (one line naming the file) and the request fails.
+ * vtkErrorMacro (one line naming the file) and the request fails; so is a header that claims
+ * more voxels than its file could hold even compressed (1032 bytes per byte, zlib's limit).
  *
  * @sa vtkNIFTIImageReader vtkCBC3DBCCLattice
  */
@@ -94,6 +95,9 @@ private:
   // ours that names the file; warnings are passed on. False on failure.
   bool RunReader(bool data);
   bool ComputeFrame();
+  // False, with an error, when the header claims more voxel bytes than the file could hold
+  // even compressed: the inner reader would try to allocate them.
+  bool VoxelsFitInFile();
 };
 
 #endif

@@ -514,6 +514,28 @@ int TestCBC3DNIfTIReader(int, char*[])
     check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(f) sheared sform: empty output");
   }
 
+  // (h) a header that claims far more voxels than its file holds (30000^3 int16 in 472 bytes;
+  // found by the NIfTI fuzzer: the inner reader allocated the claimed 54 TB and the cbc3d
+  // command aborted): one error naming the file, and no read.
+  std::vector<unsigned char> huge = MakeNifti(Header());
+  for (int a = 0; a < 3; ++a)
+  {
+    Put<int16_t>(huge, 42 + 2 * a, 30000);
+  }
+  const std::string pathHuge = dir + "/claims_huge_image.nii";
+  check.Check(WriteFile(pathHuge, huge), "write " + pathHuge);
+  {
+    vtkNew<MessageObserver> observer;
+    auto reader = MakeReader(observer);
+    reader->SetFileName(pathHuge.c_str());
+    reader->Update();
+    check.Check(observer->Errors.size() >= 1 &&
+        observer->Errors[0].find(pathHuge) != std::string::npos &&
+        observer->Errors[0].find("30000 x 30000 x 30000 voxels") != std::string::npos,
+      "(h) header claiming 30000^3 voxels: error naming the file and the size");
+    check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(h) huge claim: empty output");
+  }
+
   // PrintSelf.
   {
     vtkNew<vtkCBC3DNIfTIReader> reader;
