@@ -15,10 +15,14 @@
 #include <vtkPointData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
+#include <vtk_zlib.h>
 #include <vtksys/SystemTools.hxx>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -66,6 +70,67 @@ std::string VoxelFileName(const std::string& fileName)
     }
   }
   return fileName;
+}
+
+// The datatype codes the NIfTI-1 and -2 standards define. vtkNIFTIImageReader reads some of
+// them and refuses the others with an error, but other values can crash it (found by the NIfTI
+// fuzzer: datatype 25973 made its RequestInformation read out of bounds), so any other value is
+// refused before it reads the header.
+constexpr std::array<int, 17> NIfTIDataTypes = { 1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 768, 1024,
+  1280, 1536, 1792, 2048, 2304 };
+
+// The header file of a .hdr/.img pair given by its .img, otherwise the file itself.
+std::string HeaderFileName(const std::string& fileName)
+{
+  const std::string lower = vtksys::SystemTools::LowerCase(fileName);
+  for (const char* image : { ".img", ".img.gz" })
+  {
+    if (vtksys::SystemTools::StringEndsWith(lower, image))
+    {
+      const std::string stem = fileName.substr(0, fileName.size() - std::string(image).size());
+      for (const char* header : { ".hdr", ".hdr.gz" })
+      {
+        if (vtksys::SystemTools::FileExists(stem + header, true))
+        {
+          return stem + header;
+        }
+      }
+    }
+  }
+  return fileName;
+}
+
+// The header's datatype code (sizeof_hdr 348: NIfTI-1 or Analyze, datatype at byte 70; 540:
+// NIfTI-2, at byte 12; either byte order), or false when the header cannot be read that far.
+bool ReadDataType(const std::string& headerFile, int& dataType)
+{
+  unsigned char header[540];
+  gzFile file = gzopen(headerFile.c_str(), "rb");
+  if (!file)
+  {
+    return false;
+  }
+  const int length = gzread(file, header, sizeof(header));
+  gzclose(file);
+  auto field = [&](int offset, int bytes, bool swap) {
+    std::uint32_t value = 0;
+    for (int b = 0; b < bytes; ++b)
+    {
+      value |= std::uint32_t(header[offset + (swap ? bytes - 1 - b : b)]) << (8 * b);
+    }
+    return value;
+  };
+  for (const bool swap : { false, true })
+  {
+    const std::uint32_t size = length >= 4 ? field(0, 4, swap) : 0;
+    const int offset = size == 348 ? 70 : size == 540 ? 12 : -1;
+    if (offset >= 0 && length >= offset + 2)
+    {
+      dataType = static_cast<std::int16_t>(field(offset, 2, swap));
+      return true;
+    }
+  }
+  return false;
 }
 
 // zlib's largest expansion: a deflate stream of n bytes inflates to at most 1032 n bytes. A
@@ -294,6 +359,15 @@ int vtkCBC3DNIfTIReader::RequestInformation(
   {
     vtkErrorMacro(<< "Cannot read " << this->FileName
                   << ": not a NIfTI file (no NIfTI-1/2 or Analyze 7.5 header)");
+    return 0;
+  }
+
+  int dataType = 0;
+  if (ReadDataType(HeaderFileName(this->FileName), dataType) &&
+    std::find(NIfTIDataTypes.begin(), NIfTIDataTypes.end(), dataType) == NIfTIDataTypes.end())
+  {
+    vtkErrorMacro(<< "Cannot read NIfTI file " << this->FileName << ": its datatype " << dataType
+                  << " is not a NIfTI data type");
     return 0;
   }
 

@@ -536,6 +536,24 @@ int TestCBC3DNIfTIReader(int, char*[])
     check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(h) huge claim: empty output");
   }
 
+  // (i) a datatype code NIfTI does not define (25973; found by the NIfTI fuzzer: VTK's reader
+  // crashed on it): one error naming the file and the code.
+  std::vector<unsigned char> badType = MakeNifti(Header());
+  Put<int16_t>(badType, 70, 25973);
+  const std::string pathBadType = dir + "/unknown_datatype.nii";
+  check.Check(WriteFile(pathBadType, badType), "write " + pathBadType);
+  {
+    vtkNew<MessageObserver> observer;
+    auto reader = MakeReader(observer);
+    reader->SetFileName(pathBadType.c_str());
+    reader->Update();
+    check.Check(observer->Errors.size() >= 1 &&
+        observer->Errors[0].find(pathBadType) != std::string::npos &&
+        observer->Errors[0].find("datatype 25973") != std::string::npos,
+      "(i) unknown datatype: error naming the file and the code");
+    check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(i) unknown datatype: empty output");
+  }
+
   // PrintSelf.
   {
     vtkNew<vtkCBC3DNIfTIReader> reader;
