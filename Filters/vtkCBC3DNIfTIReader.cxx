@@ -142,21 +142,25 @@ constexpr double LargestInflation = 1032.0;
 
 bool vtkCBC3DNIfTIReader::VoxelsFitInFile()
 {
-  const std::string voxelFile = VoxelFileName(this->FileName);
-  if (voxelFile.empty())
-  {
-    return true;
-  }
   int extent[6];
   this->Reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  if (extent[1] < extent[0] || extent[3] < extent[2] || extent[5] < extent[4])
+  {
+    // vtkNIFTIImageReader would go on to read into an empty image (a header with dim[3] = 0
+    // made it write past its buffer: found by the NIfTI fuzzer).
+    vtkErrorMacro(<< "Cannot read NIfTI file " << this->FileName
+                  << ": its header gives an image with no voxels along an axis");
+    return false;
+  }
   double claimed = this->Reader->GetNumberOfScalarComponents() *
     double(vtkDataArray::GetDataTypeSize(this->Reader->GetDataScalarType()));
   for (int a = 0; a < 3; ++a)
   {
     claimed *= double(extent[2 * a + 1]) - extent[2 * a] + 1.0;
   }
-  const double fileBytes = double(vtksys::SystemTools::FileLength(voxelFile));
-  if (claimed <= LargestInflation * fileBytes)
+  const std::string voxelFile = VoxelFileName(this->FileName);
+  const double fileBytes = voxelFile.empty() ? 0.0 : double(vtksys::SystemTools::FileLength(voxelFile));
+  if (voxelFile.empty() || claimed <= LargestInflation * fileBytes)
   {
     return true;
   }

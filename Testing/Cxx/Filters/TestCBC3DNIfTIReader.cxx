@@ -554,6 +554,24 @@ int TestCBC3DNIfTIReader(int, char*[])
     check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(i) unknown datatype: empty output");
   }
 
+  // (j) dim[3] = 0: no voxels along z (found by the NIfTI fuzzer: VTK's reader wrote past its
+  // buffer): one error naming the file.
+  std::vector<unsigned char> flat = MakeNifti(Header());
+  Put<int16_t>(flat, 46, 0);
+  const std::string pathFlat = dir + "/no_slices.nii";
+  check.Check(WriteFile(pathFlat, flat), "write " + pathFlat);
+  {
+    vtkNew<MessageObserver> observer;
+    auto reader = MakeReader(observer);
+    reader->SetFileName(pathFlat.c_str());
+    reader->Update();
+    check.Check(observer->Errors.size() >= 1 &&
+        observer->Errors[0].find(pathFlat) != std::string::npos &&
+        observer->Errors[0].find("no voxels along an axis") != std::string::npos,
+      "(j) dim[3] = 0: error naming the file");
+    check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(j) dim[3] = 0: empty output");
+  }
+
   // PrintSelf.
   {
     vtkNew<vtkCBC3DNIfTIReader> reader;
