@@ -100,18 +100,25 @@ std::string HeaderFileName(const std::string& fileName)
   return fileName;
 }
 
-// The header's datatype code (sizeof_hdr 348: NIfTI-1 or Analyze, datatype at byte 70; 540:
-// NIfTI-2, at byte 12; either byte order), or false when the header cannot be read that far.
-bool ReadDataType(const std::string& headerFile, int& dataType)
+// What is wrong with the header's sizeof_hdr or datatype fields, in words; empty when both are
+// sound or the file is too short to tell (vtkNIFTIImageReader then says why it cannot read it).
+// sizeof_hdr must be 348 (NIfTI-1, Analyze 7.5; datatype at byte 70) or 540 (NIfTI-2; at byte
+// 12), in either byte order: it is how readers tell the byte order, and VTK's reader read a
+// header whose sizeof_hdr was 0 and crashed on its datatype.
+std::string HeaderProblem(const std::string& headerFile)
 {
   unsigned char header[540];
   gzFile file = gzopen(headerFile.c_str(), "rb");
   if (!file)
   {
-    return false;
+    return std::string();
   }
   const int length = gzread(file, header, sizeof(header));
   gzclose(file);
+  if (length < 4)
+  {
+    return std::string();
+  }
   auto field = [&](int offset, int bytes, bool swap) {
     std::uint32_t value = 0;
     for (int b = 0; b < bytes; ++b)
@@ -122,15 +129,25 @@ bool ReadDataType(const std::string& headerFile, int& dataType)
   };
   for (const bool swap : { false, true })
   {
-    const std::uint32_t size = length >= 4 ? field(0, 4, swap) : 0;
+    const std::uint32_t size = field(0, 4, swap);
     const int offset = size == 348 ? 70 : size == 540 ? 12 : -1;
-    if (offset >= 0 && length >= offset + 2)
+    if (offset < 0)
     {
-      dataType = static_cast<std::int16_t>(field(offset, 2, swap));
-      return true;
+      continue;
     }
+    if (length < offset + 2)
+    {
+      return std::string();
+    }
+    const int dataType = static_cast<std::int16_t>(field(offset, 2, swap));
+    if (std::find(NIfTIDataTypes.begin(), NIfTIDataTypes.end(), dataType) == NIfTIDataTypes.end())
+    {
+      return "its datatype " + std::to_string(dataType) + " is not a NIfTI data type";
+    }
+    return std::string();
   }
-  return false;
+  return "its sizeof_hdr is " + std::to_string(static_cast<std::int32_t>(field(0, 4, false))) +
+    ", neither 348 (NIfTI-1, Analyze 7.5) nor 540 (NIfTI-2)";
 }
 
 // zlib's largest expansion: a deflate stream of n bytes inflates to at most 1032 n bytes. A
@@ -366,12 +383,10 @@ int vtkCBC3DNIfTIReader::RequestInformation(
     return 0;
   }
 
-  int dataType = 0;
-  if (ReadDataType(HeaderFileName(this->FileName), dataType) &&
-    std::find(NIfTIDataTypes.begin(), NIfTIDataTypes.end(), dataType) == NIfTIDataTypes.end())
+  const std::string headerProblem = HeaderProblem(HeaderFileName(this->FileName));
+  if (!headerProblem.empty())
   {
-    vtkErrorMacro(<< "Cannot read NIfTI file " << this->FileName << ": its datatype " << dataType
-                  << " is not a NIfTI data type");
+    vtkErrorMacro(<< "Cannot read NIfTI file " << this->FileName << ": " << headerProblem);
     return 0;
   }
 

@@ -572,6 +572,24 @@ int TestCBC3DNIfTIReader(int, char*[])
     check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(j) dim[3] = 0: empty output");
   }
 
+  // (k) sizeof_hdr 0 beside the NIfTI-1 magic (found by the NIfTI fuzzer: VTK's reader read
+  // it and crashed on its datatype): one error naming the file and the field.
+  std::vector<unsigned char> noSize = MakeNifti(Header());
+  Put<int32_t>(noSize, 0, 0);
+  const std::string pathNoSize = dir + "/zero_sizeof_hdr.nii";
+  check.Check(WriteFile(pathNoSize, noSize), "write " + pathNoSize);
+  {
+    vtkNew<MessageObserver> observer;
+    auto reader = MakeReader(observer);
+    reader->SetFileName(pathNoSize.c_str());
+    reader->Update();
+    check.Check(observer->Errors.size() >= 1 &&
+        observer->Errors[0].find(pathNoSize) != std::string::npos &&
+        observer->Errors[0].find("sizeof_hdr is 0") != std::string::npos,
+      "(k) sizeof_hdr 0: error naming the file and the field");
+    check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(k) sizeof_hdr 0: empty output");
+  }
+
   // PrintSelf.
   {
     vtkNew<vtkCBC3DNIfTIReader> reader;
