@@ -127,17 +127,30 @@ std::string HeaderProblem(const std::string& headerFile)
     }
     return value;
   };
-  for (const bool swap : { false, true })
+  for (const bool sizeSwap : { false, true })
   {
-    const std::uint32_t size = field(0, 4, swap);
+    const std::uint32_t size = field(0, 4, sizeSwap);
     const int offset = size == 348 ? 70 : size == 540 ? 12 : -1;
     if (offset < 0)
     {
       continue;
     }
-    if (length < offset + 2)
+    const int dimOffset = size == 348 ? 40 : 16; // dim[0]: int16 in NIfTI-1, int64 (low bytes) in -2
+    if (length < offset + 2 || length < dimOffset + 8)
     {
       return std::string();
+    }
+    // VTK's reader takes the byte order in which dim[0] is 1 to 7, whatever sizeof_hdr says (an
+    // input with sizeof_hdr 348 and a dim[0] valid only swapped crashed it on the swapped
+    // datatype): the datatype is checked in that order.
+    auto dim0 = [&](bool swap) {
+      return size == 348 ? int(static_cast<std::int16_t>(field(dimOffset, 2, swap)))
+                         : int(field(dimOffset + (swap ? 4 : 0), 4, swap));
+    };
+    const bool swap = (dim0(sizeSwap) >= 1 && dim0(sizeSwap) <= 7) ? sizeSwap : !sizeSwap;
+    if (dim0(swap) < 1 || dim0(swap) > 7)
+    {
+      return "its dim[0] is " + std::to_string(dim0(sizeSwap)) + ", not 1 to 7 in either byte order";
     }
     const int dataType = static_cast<std::int16_t>(field(offset, 2, swap));
     if (std::find(NIfTIDataTypes.begin(), NIfTIDataTypes.end(), dataType) == NIfTIDataTypes.end())
