@@ -30,7 +30,9 @@
  * not rescaled by scl_slope/scl_inter. Only the first volume of a 4-D file is read.
  *
  * @warning A missing or unreadable file, or one that is not NIfTI, is reported with
- * vtkErrorMacro (one line naming the file) and the request fails.
+ * vtkErrorMacro (one line naming the file) and the request fails; so is a header with a
+ * datatype code NIfTI does not define, an axis of no voxels, or more voxels than its file could
+ * hold even compressed (1032 bytes per byte, zlib's limit).
  *
  * @sa vtkNIFTIImageReader vtkCBC3DBCCLattice
  */
@@ -94,6 +96,10 @@ private:
   // ours that names the file; warnings are passed on. False on failure.
   bool RunReader(bool data);
   bool ComputeFrame();
+  // False, with an error, when the header gives an axis no voxels, or claims more voxel bytes
+  // than the file could hold even compressed: the inner reader would read into an empty image,
+  // or try to allocate them.
+  bool VoxelsFitInFile();
 };
 
 #endif

@@ -12,6 +12,9 @@ packages=(
   paraview paraview-dev python3-paraview python3-numpy
   # FE clients and converters the mesh tests hand meshes to; scipy cross-checks the checker
   python3-dolfinx-real python3-meshio python3-gmsh python3-netcdf4 python3-scipy
+  # the sanitizer job (scripts/sanitizer-job.sh): clang with its ASan, UBSan and libFuzzer
+  # runtimes, clang's OpenMP, and llvm-symbolizer for readable reports
+  clang libclang-rt-14-dev libomp-14-dev llvm
   # core dependencies (serial HDF5 for the .xdmf's .h5; libnetcdf-dev, for .exo, is below)
   libeigen3-dev libhdf5-dev
   # packages ParaView's CMake config requires at configure time

@@ -63,8 +63,12 @@ BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>
   }
 
   Gaps gaps;
-  for (const auto& [label, tissue] : this->Tissues)
+  for (const auto& entry : this->Tissues)
   {
+    // Named references, not a structured binding: clang 14 cannot share a binding with the
+    // OpenMP regions below (C++17 forbids capturing one).
+    const std::int32_t label = entry.first;
+    const auto& tissue = entry.second;
     const std::vector<Face>& faces = surfaces[label];
     if (faces.empty() || tissue.Centres.empty())
     {

@@ -322,8 +322,11 @@ void Repairer::LinkAroundEdge(PointId v, PointId w, Star& star,
   Components(
     star,
     [&](int node) {
+      // Outside-face nodes come after the tets: only a tet node may index star.Tets.
+      if (!star.IsTet(node))
+        return false;
       const Tet& tet = this->TetList[star.Tets[node]];
-      return star.IsTet(node) && std::find(tet.begin(), tet.end(), w) != tet.end();
+      return std::find(tet.begin(), tet.end(), w) != tet.end();
     },
     chain);
   const std::size_t count = ends.size();

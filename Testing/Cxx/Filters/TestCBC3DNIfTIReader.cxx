@@ -514,6 +514,82 @@ int TestCBC3DNIfTIReader(int, char*[])
     check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(f) sheared sform: empty output");
   }
 
+  // (h) a header that claims far more voxels than its file holds (30000^3 int16 in 472 bytes;
+  // found by the NIfTI fuzzer: the inner reader allocated the claimed 54 TB and the cbc3d
+  // command aborted): one error naming the file, and no read.
+  std::vector<unsigned char> huge = MakeNifti(Header());
+  for (int a = 0; a < 3; ++a)
+  {
+    Put<int16_t>(huge, 42 + 2 * a, 30000);
+  }
+  const std::string pathHuge = dir + "/claims_huge_image.nii";
+  check.Check(WriteFile(pathHuge, huge), "write " + pathHuge);
+  {
+    vtkNew<MessageObserver> observer;
+    auto reader = MakeReader(observer);
+    reader->SetFileName(pathHuge.c_str());
+    reader->Update();
+    check.Check(observer->Errors.size() >= 1 &&
+        observer->Errors[0].find(pathHuge) != std::string::npos &&
+        observer->Errors[0].find("30000 x 30000 x 30000 voxels") != std::string::npos,
+      "(h) header claiming 30000^3 voxels: error naming the file and the size");
+    check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(h) huge claim: empty output");
+  }
+
+  // (i) a datatype code NIfTI does not define (25973; found by the NIfTI fuzzer: VTK's reader
+  // crashed on it): one error naming the file and the code.
+  std::vector<unsigned char> badType = MakeNifti(Header());
+  Put<int16_t>(badType, 70, 25973);
+  const std::string pathBadType = dir + "/unknown_datatype.nii";
+  check.Check(WriteFile(pathBadType, badType), "write " + pathBadType);
+  {
+    vtkNew<MessageObserver> observer;
+    auto reader = MakeReader(observer);
+    reader->SetFileName(pathBadType.c_str());
+    reader->Update();
+    check.Check(observer->Errors.size() >= 1 &&
+        observer->Errors[0].find(pathBadType) != std::string::npos &&
+        observer->Errors[0].find("datatype 25973") != std::string::npos,
+      "(i) unknown datatype: error naming the file and the code");
+    check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(i) unknown datatype: empty output");
+  }
+
+  // (j) dim[3] = 0: no voxels along z (found by the NIfTI fuzzer: VTK's reader wrote past its
+  // buffer): one error naming the file.
+  std::vector<unsigned char> flat = MakeNifti(Header());
+  Put<int16_t>(flat, 46, 0);
+  const std::string pathFlat = dir + "/no_slices.nii";
+  check.Check(WriteFile(pathFlat, flat), "write " + pathFlat);
+  {
+    vtkNew<MessageObserver> observer;
+    auto reader = MakeReader(observer);
+    reader->SetFileName(pathFlat.c_str());
+    reader->Update();
+    check.Check(observer->Errors.size() >= 1 &&
+        observer->Errors[0].find(pathFlat) != std::string::npos &&
+        observer->Errors[0].find("no voxels along an axis") != std::string::npos,
+      "(j) dim[3] = 0: error naming the file");
+    check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(j) dim[3] = 0: empty output");
+  }
+
+  // (k) sizeof_hdr 0 beside the NIfTI-1 magic (found by the NIfTI fuzzer: VTK's reader read
+  // it and crashed on its datatype): one error naming the file and the field.
+  std::vector<unsigned char> noSize = MakeNifti(Header());
+  Put<int32_t>(noSize, 0, 0);
+  const std::string pathNoSize = dir + "/zero_sizeof_hdr.nii";
+  check.Check(WriteFile(pathNoSize, noSize), "write " + pathNoSize);
+  {
+    vtkNew<MessageObserver> observer;
+    auto reader = MakeReader(observer);
+    reader->SetFileName(pathNoSize.c_str());
+    reader->Update();
+    check.Check(observer->Errors.size() >= 1 &&
+        observer->Errors[0].find(pathNoSize) != std::string::npos &&
+        observer->Errors[0].find("sizeof_hdr is 0") != std::string::npos,
+      "(k) sizeof_hdr 0: error naming the file and the field");
+    check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(k) sizeof_hdr 0: empty output");
+  }
+
   // PrintSelf.
   {
     vtkNew<vtkCBC3DNIfTIReader> reader;
