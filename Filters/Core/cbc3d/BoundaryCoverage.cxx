@@ -40,9 +40,16 @@ BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>
   std::vector<std::int64_t> tetOf;
   tissueTets.reserve(tets.size());
   tetOf.reserve(tets.size());
+  std::int32_t lastLabel = labels.empty() ? 0 : labels[0];
+  bool lastTracked = !labels.empty() && this->Tissues.count(lastLabel) > 0;
   for (std::size_t t = 0; t < tets.size(); ++t)
   {
-    if (this->Tissues.count(labels[t]))
+    if (labels[t] != lastLabel) // neighbouring tets mostly share a label: one lookup per change
+    {
+      lastLabel = labels[t];
+      lastTracked = this->Tissues.count(lastLabel) > 0;
+    }
+    if (lastTracked)
     {
       tissueTets.push_back(tets[t]);
       tetOf.push_back(static_cast<std::int64_t>(t));

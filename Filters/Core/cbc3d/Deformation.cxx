@@ -71,7 +71,7 @@ class Registration
 {
 public:
   Registration(const TetMesh& mesh, const SurfaceSources& sources, const Matcher& matcher,
-    FidelityGuard& fidelity, Eigen::SparseMatrix<double> stiffness,
+    FidelityGuard& fidelity, Eigen::SparseMatrix<double>& stiffness,
     const DeformationParams& params, double bound, double negligibleMove)
     : Mesh(mesh)
     , Sources(sources)
@@ -85,10 +85,11 @@ public:
     , Search(mesh.Points.size())
     , Interior(mesh.Points.size(), 1)
     , Du(Eigen::VectorXd::Zero(stiffness.rows()))
-    , System(std::move(stiffness))
   {
-    // Each step's system is the stiffness plus springs on its diagonal: the matrix is kept
-    // once, and only its diagonal is written again for each step, from the stiffness's own.
+    // Each step's system is the stiffness plus springs on its diagonal: the matrix is taken
+    // over (swapped: Eigen 3.4's sparse matrix has no move), and only its diagonal is written
+    // again for each step, from the stiffness's own.
+    this->System.swap(stiffness);
     this->System.makeCompressed();
     for (Eigen::Index i = 0; i < this->System.rows(); ++i)
     {
@@ -408,7 +409,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     return Status::Aborted();
   }
   std::vector<Eigen::Vector3d>& x = out.Points;
-  Registration registration(mesh, sources, matcher, fidelity, std::move(stiffness), params, bound,
+  Registration registration(mesh, sources, matcher, fidelity, stiffness, params, bound,
     0.01 * image.Spacing.minCoeff());
   // A huge iteration count ends once the surface stops approaching the image: its vertices
   // keep jittering by up to a voxel, but their mean distance to their goals levels off.

@@ -64,6 +64,9 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
   // edge with it. Then each tet adds its 12x12 matrix into those blocks. (Building it from
   // 144 triplets per tet needed 16 bytes per triplet: 1.5 GB on a 650k-tet mesh.) That takes
   // seconds on such a mesh: a stop request is looked for between the steps and the batches.
+  // Every return names this one matrix, so it is built in place (Eigen 3.4's sparse matrix has
+  // no move constructor: any other return would copy it).
+  Eigen::SparseMatrix<double> stiffness;
   const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
   // Point p's neighbours (itself included), ascending, are neighbours[rowStart[p]..rowStart[p+1]).
   std::vector<std::int64_t> rowStart(n + 1, 0); // in blocks
@@ -72,8 +75,9 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
     const PointTets around(mesh.Tets, static_cast<std::size_t>(n));
     if (!KeepGoing(progress, 0.1))
     {
-      return {};
+      return stiffness;
     }
+    neighbours.reserve(16 * static_cast<std::size_t>(n)); // a lattice point has 14 and itself
     std::vector<PointId> list;
     for (std::int64_t p = 0; p < n; ++p)
     {
@@ -93,13 +97,13 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
   };
   if (!KeepGoing(progress, 0.2))
   {
-    return {};
+    return stiffness;
   }
   // Column-major storage of a symmetric matrix: column 3p+c lists the rows of p's blocks.
   // Written straight into the matrix's arrays: copying them in took most of a second.
   const std::int64_t blocks = rowStart[n];
   const int dofs = static_cast<int>(3 * n);
-  Eigen::SparseMatrix<double> stiffness(dofs, dofs);
+  stiffness.resize(dofs, dofs);
   stiffness.resizeNonZeros(static_cast<Eigen::Index>(9 * blocks));
   int* outer = stiffness.outerIndexPtr();
   int* inner = stiffness.innerIndexPtr();
@@ -129,7 +133,7 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
   {
     if (!KeepGoing(progress, 0.3 + 0.7 * double(begin) / double(tetCount)))
     {
-      return {};
+      return stiffness;
     }
     const std::int64_t end = std::min(tetCount, begin + batch);
 #pragma omp parallel for schedule(static) num_threads(ThreadCount(numberOfThreads))
