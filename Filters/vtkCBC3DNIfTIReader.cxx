@@ -143,14 +143,28 @@ std::string HeaderProblem(const std::string& headerFile)
     // VTK's reader takes the byte order in which dim[0] is 1 to 7, whatever sizeof_hdr says (an
     // input with sizeof_hdr 348 and a dim[0] valid only swapped crashed it on the swapped
     // datatype): the datatype is checked in that order.
-    auto dim0 = [&](bool swap) {
-      return size == 348 ? int(static_cast<std::int16_t>(field(dimOffset, 2, swap)))
-                         : int(field(dimOffset + (swap ? 4 : 0), 4, swap));
+    auto dimAt = [&](int i, bool swap) {
+      return size == 348 ? int(static_cast<std::int16_t>(field(dimOffset + 2 * i, 2, swap)))
+                         : int(field(dimOffset + 8 * i + (swap ? 4 : 0), 4, swap));
     };
+    auto dim0 = [&](bool swap) { return dimAt(0, swap); };
     const bool swap = (dim0(sizeSwap) >= 1 && dim0(sizeSwap) <= 7) ? sizeSwap : !sizeSwap;
     if (dim0(swap) < 1 || dim0(swap) > 7)
     {
       return "its dim[0] is " + std::to_string(dim0(sizeSwap)) + ", not 1 to 7 in either byte order";
+    }
+    // Every axis the header declares needs a voxel: dim[5] = 0 (no vector components) beside
+    // dim[0] = 7 made VTK's reader divide by zero (found by the NIfTI fuzzer).
+    if (length >= dimOffset + (size == 348 ? 16 : 64))
+    {
+      for (int i = 1; i <= dim0(swap); ++i)
+      {
+        if (dimAt(i, swap) < 1)
+        {
+          return "its dim[" + std::to_string(i) + "] is " + std::to_string(dimAt(i, swap)) +
+            ": no voxels along an axis";
+        }
+      }
     }
     const int dataType = static_cast<std::int16_t>(field(offset, 2, swap));
     if (std::find(NIfTIDataTypes.begin(), NIfTIDataTypes.end(), dataType) == NIfTIDataTypes.end())

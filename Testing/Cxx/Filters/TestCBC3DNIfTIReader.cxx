@@ -572,6 +572,28 @@ int TestCBC3DNIfTIReader(int, char*[])
     check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(j) dim[3] = 0: empty output");
   }
 
+  // (j2) dim[0] = 7 with dim[5] = 0: a declared axis with no voxels beyond the third (found by
+  // the NIfTI fuzzer: VTK's reader divided by zero): one error naming the file.
+  std::vector<unsigned char> noComponents = MakeNifti(Header());
+  Put<int16_t>(noComponents, 40, 7);
+  Put<int16_t>(noComponents, 48, 1);
+  Put<int16_t>(noComponents, 50, 0);
+  Put<int16_t>(noComponents, 52, 1);
+  Put<int16_t>(noComponents, 54, 1);
+  const std::string pathNoComponents = dir + "/no_components.nii";
+  check.Check(WriteFile(pathNoComponents, noComponents), "write " + pathNoComponents);
+  {
+    vtkNew<MessageObserver> observer;
+    auto reader = MakeReader(observer);
+    reader->SetFileName(pathNoComponents.c_str());
+    reader->Update();
+    check.Check(observer->Errors.size() >= 1 &&
+        observer->Errors[0].find(pathNoComponents) != std::string::npos &&
+        observer->Errors[0].find("dim[5] is 0") != std::string::npos,
+      "(j2) dim[5] = 0 under dim[0] = 7: error naming the file and the axis");
+    check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(j2) empty output");
+  }
+
   // (k) sizeof_hdr 0 beside the NIfTI-1 magic (found by the NIfTI fuzzer: VTK's reader read
   // it and crashed on its datatype): one error naming the file and the field.
   std::vector<unsigned char> noSize = MakeNifti(Header());
