@@ -68,7 +68,7 @@ run_fuzzer() {
   echo "  $(grep -m1 'stat::number_of_executed_units' "$build/fuzz-$corpus.log")"
   part_done "fuzz $name"
 }
-run_fuzzer CBC3DFuzzPipeline pipeline 2000
+run_fuzzer CBC3DFuzzPipeline pipeline 250
 run_fuzzer CBC3DFuzzNIfTIReader nifti 30000
 
 echo "sanitizer job: passed in $((SECONDS - job_start)) s"
