@@ -78,6 +78,10 @@ std::string VoxelFileName(const std::string& fileName)
 // refused before it reads the header.
 constexpr std::array<int, 17> NIfTIDataTypes = { 1, 2, 4, 8, 16, 32, 64, 128, 256, 512, 768, 1024,
   1280, 1536, 1792, 2048, 2304 };
+// The ones a label map can be: integers and reals of one component. Bits, complex, RGB and
+// 128-bit floats are refused before VTK's reader sees them (a complex256 header made it ask for
+// a vector of negative length: found by the NIfTI fuzzer).
+constexpr std::array<int, 10> LabelDataTypes = { 2, 4, 8, 16, 64, 256, 512, 768, 1024, 1280 };
 
 // The header file of a .hdr/.img pair given by its .img, otherwise the file itself.
 std::string HeaderFileName(const std::string& fileName)
@@ -170,6 +174,11 @@ std::string HeaderProblem(const std::string& headerFile)
     if (std::find(NIfTIDataTypes.begin(), NIfTIDataTypes.end(), dataType) == NIfTIDataTypes.end())
     {
       return "its datatype " + std::to_string(dataType) + " is not a NIfTI data type";
+    }
+    if (std::find(LabelDataTypes.begin(), LabelDataTypes.end(), dataType) == LabelDataTypes.end())
+    {
+      return "its datatype " + std::to_string(dataType) +
+        " is not a label type: a label map holds integers or reals, not bits or values of several components (complex numbers, colours)";
     }
     return std::string();
   }
