@@ -264,7 +264,7 @@ void AddTissueFields(vtkFieldData* fields, const std::vector<TissueRow>& rows,
 }
 // A row per tissue of the mesh, and of the image when there is one (`image` may be null);
 // false when the user stopped the filter.
-bool MeasureTissues(vtkCBC3DMeshQuality* filter, const cbc3d::TetMesh& mesh,
+bool MeasureTissues(vtkCBC3DMeshQuality* filter, const cbc3d::TetMesh& mesh, const std::vector<cbc3d::MeshFace>& faces,
   const cbc3d::QualitySummary& summary, const cbc3d::LabelImage* image, std::vector<TissueRow>& rows)
 {
   std::set<int> labels;
@@ -276,7 +276,7 @@ bool MeasureTissues(vtkCBC3DMeshQuality* filter, const cbc3d::TetMesh& mesh,
   std::map<std::int32_t, std::vector<Eigen::Vector3d>> boundary;
   if (image)
   {
-    surface = cbc3d::TissueSurfaceVertices(mesh);
+    surface = cbc3d::TissueSurfaceVertices(mesh, faces);
     boundary = cbc3d::TissueBoundaryVoxelCentres(*image, filter->GetNumberOfThreads());
     for (const auto& entry : boundary)
     {
@@ -352,8 +352,10 @@ int vtkCBC3DMeshQuality::RequestData(
     cbc3d::SummarizeQuality(mesh, this->NumberOfThreads, &perTet);
   this->UpdateProgress(0.3);
 
+  // One face list for the tissue surfaces and the topology.
+  const std::vector<cbc3d::MeshFace> faces = cbc3d::FindMeshFaces(mesh, this->NumberOfThreads);
   std::vector<TissueRow> rows;
-  if (!MeasureTissues(this, mesh, summary, image.get(), rows))
+  if (!MeasureTissues(this, mesh, faces, summary, image.get(), rows))
   {
     output->Initialize();
     return 1; // stopped by the user
@@ -375,7 +377,7 @@ int vtkCBC3DMeshQuality::RequestData(
   }
   const cbc3d::ImageTopology imageTopology =
     withImage ? cbc3d::MeasureImageTopology(*image, this->NumberOfThreads) : cbc3d::ImageTopology();
-  AddTopologyFields(fields, cbc3d::MeasureMeshTopology(mesh), withImage ? &imageTopology : nullptr, tissueLabels);
+  AddTopologyFields(fields, cbc3d::MeasureMeshTopology(mesh, faces), withImage ? &imageTopology : nullptr, tissueLabels);
   output->SetFieldData(fields);
   this->UpdateProgress(1.0);
   return 1;

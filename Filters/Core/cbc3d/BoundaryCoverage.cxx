@@ -56,7 +56,7 @@ BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>
     }
   }
   std::map<std::int32_t, std::vector<Face>> surfaces;
-  for (const MeshFace& face : FindMeshFaces(tissueTets, points.size()))
+  for (const MeshFace& face : FindMeshFaces(tissueTets, points.size(), this->Threads))
   {
     for (int side = 0; side < std::min(face.TetCount, 2); ++side)
     {

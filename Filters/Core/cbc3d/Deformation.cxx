@@ -378,7 +378,9 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   {
     return Status::Aborted();
   }
-  const SurfaceSources sources = FindSurfaceSources(mesh);
+  // The tets and labels stay as they are: one face list serves every stage below.
+  const std::vector<MeshFace> faces = FindMeshFaces(mesh, threads);
+  const SurfaceSources sources = FindSurfaceSources(mesh, faces);
   if (stops.Stopped(0.02))
   {
     return Status::Aborted();
@@ -397,7 +399,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   }
   const Matcher matcher(sources, targets, threads);
   // Boundary voxels are dense: a grid of a few voxels per cell keeps each query short.
-  FidelityGuard fidelity(image, mesh, 2.0 * image.Spacing.maxCoeff(), threads, stops.KeepGoing);
+  FidelityGuard fidelity(image, mesh, faces, 2.0 * image.Spacing.maxCoeff(), threads, stops.KeepGoing);
   if (stops.Stopped(0.07))
   {
     return Status::Aborted();
@@ -450,7 +452,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   if (params.KeepVolumes && result.Iterations > 0)
   {
     // Half a voxel per round at most: the shortfalls left are well under a voxel deep.
-    const TissueVolumeKeeper volumes(mesh, TissueImageVolumes(image), 0.5 * image.Spacing.minCoeff());
+    const TissueVolumeKeeper volumes(mesh, faces, TissueImageVolumes(image), 0.5 * image.Spacing.minCoeff());
     if (RestoreTissueVolumes(volumes, mesh, sources.Points, x, bound, threads, fidelity, stops.KeepGoing) ==
       StepOutcome::Aborted)
     {

@@ -7,12 +7,12 @@
 
 namespace cbc3d
 {
-FidelityGuard::FidelityGuard(const LabelImage& image, const TetMesh& mesh, double cell,
-  int threads, const std::function<bool()>& keepGoing)
+FidelityGuard::FidelityGuard(const LabelImage& image, const TetMesh& mesh, const std::vector<MeshFace>& faces,
+  double cell, int threads, const std::function<bool()>& keepGoing)
   : Cell(cell)
   , Threads(threads)
 {
-  const auto vertices = TissueSurfaceVertices(mesh);
+  const auto vertices = TissueSurfaceVertices(mesh, faces);
   const auto voxels = TissueBoundaryVoxels(image, threads);
   for (const auto& [label, ids] : vertices)
   {

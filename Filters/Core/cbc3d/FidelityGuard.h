@@ -2,6 +2,7 @@
 #define cbc3d_FidelityGuard_h
 
 #include "cbc3d/LabelImage.h"
+#include "cbc3d/MeshFaces.h"
 #include "cbc3d/PointGrid.h"
 #include "cbc3d/TetMesh.h"
 
@@ -22,7 +23,8 @@ class FidelityGuard
 public:
   /// Measures every tissue's distance, asking `keepGoing` before each; when it says stop, the
   /// guard is left unfinished.
-  FidelityGuard(const LabelImage& image, const TetMesh& mesh, double cell,
+  /// `faces` are the mesh's (FindMeshFaces).
+  FidelityGuard(const LabelImage& image, const TetMesh& mesh, const std::vector<MeshFace>& faces, double cell,
     int threads, const std::function<bool()>& keepGoing);
 
   /// Holds back (share 0) the vertices whose step from the accepted positions to `trial` would

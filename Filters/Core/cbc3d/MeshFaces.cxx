@@ -1,83 +1,156 @@
 #include "cbc3d/MeshFaces.h"
 
-#include "cbc3d/TetTopology.h"
+#include "cbc3d/Parallel.h"
 
 #include <algorithm>
-#include <tuple>
+#include <stdexcept>
 
 namespace cbc3d
 {
-std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount)
+namespace
 {
-  struct Entry
+/// A face keyed by its two larger vertices (its smallest is its bucket), and one tet using it.
+struct FaceEntry
+{
+  std::uint64_t Key; // second * pointCount + third: one comparison orders both
+  std::int64_t Tet;
+  bool operator<(const FaceEntry& other) const
   {
-    PointId B, C;
-    std::int64_t Tet;
-    bool operator<(const Entry& o) const { return std::tie(B, C, Tet) < std::tie(o.B, o.C, o.Tet); }
-  };
-  auto sortedFace = [&tets](std::size_t t, int f) {
-    std::array<PointId, 3> ids = { tets[t][TetFaces[f][0]], tets[t][TetFaces[f][1]], tets[t][TetFaces[f][2]] };
-    std::sort(ids.begin(), ids.end());
-    return ids;
-  };
-  // Counting sort of the 4 faces of every tet by their smallest vertex.
-  std::vector<std::size_t> start(pointCount + 1, 0);
-  for (std::size_t t = 0; t < tets.size(); ++t)
-    for (int f = 0; f < 4; ++f)
-      ++start[sortedFace(t, f)[0] + 1];
-  for (std::size_t p = 0; p < pointCount; ++p)
-    start[p + 1] += start[p];
-  std::vector<Entry> entries(start[pointCount]);
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t t = 0; t < tets.size(); ++t)
-    for (int f = 0; f < 4; ++f)
-    {
-      const auto ids = sortedFace(t, f);
-      entries[fill[ids[0]]++] = Entry{ ids[1], ids[2], static_cast<std::int64_t>(t) };
-    }
-
-  // Sorted buckets, then the distinct faces counted, so the list is allocated once.
-  std::size_t distinct = 0;
-  for (std::size_t a = 0; a < pointCount; ++a)
-  {
-    const auto first = entries.begin() + start[a];
-    const auto last = entries.begin() + start[a + 1];
-    std::sort(first, last);
-    for (auto it = first; it != last; ++it)
-    {
-      distinct += it == first || it->B != (it - 1)->B || it->C != (it - 1)->C;
-    }
+    return this->Key < other.Key || (this->Key == other.Key && this->Tet < other.Tet);
   }
-  std::vector<MeshFace> faces;
-  faces.reserve(distinct);
+};
+
+std::array<PointId, 4> SortedCorners(const Tet& tet)
+{
+  std::array<PointId, 4> ids = tet;
+  // A sorting network of five compare-exchanges.
+  auto order = [&ids](int i, int j) {
+    if (ids[j] < ids[i])
+    {
+      std::swap(ids[i], ids[j]);
+    }
+  };
+  order(0, 1);
+  order(2, 3);
+  order(0, 2);
+  order(1, 3);
+  order(1, 2);
+  return ids;
+}
+
+/// Every face of every tet in buckets by its smallest vertex (bucket a holds entries
+/// start[a]..start[a+1]), each bucket sorted, so the order never depends on the threads.
+struct FaceBuckets
+{
+  std::vector<std::size_t> Start;
+  std::vector<FaceEntry> Entries;
+};
+
+FaceBuckets BucketFaces(const std::vector<Tet>& tets, std::uint64_t pointCount, int threads)
+{
+  // Faces of a tet with sorted corners a < b < c < d: bcd, acd, abd, abc.
+  FaceBuckets buckets;
+  buckets.Start.assign(pointCount + 1, 0);
+  std::size_t* start = buckets.Start.data();
+  const std::int64_t tetCount = static_cast<std::int64_t>(tets.size());
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t t = 0; t < tetCount; ++t)
+  {
+    const auto ids = SortedCorners(tets[t]);
+#pragma omp atomic
+    start[ids[0] + 1] += 3;
+#pragma omp atomic
+    start[ids[1] + 1] += 1;
+  }
+  for (std::uint64_t p = 0; p < pointCount; ++p)
+  {
+    start[p + 1] += start[p];
+  }
+  buckets.Entries.resize(start[pointCount]);
+  std::vector<std::size_t> fill(buckets.Start.begin(), buckets.Start.end() - 1);
+  std::size_t* next = fill.data();
+  FaceEntry* entries = buckets.Entries.data();
+  auto put = [&](PointId a, PointId b, PointId c, std::int64_t t) {
+    std::size_t slot;
+#pragma omp atomic capture
+    slot = next[a]++;
+    entries[slot] = FaceEntry{ static_cast<std::uint64_t>(b) * pointCount + static_cast<std::uint64_t>(c), t };
+  };
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t t = 0; t < tetCount; ++t)
+  {
+    const auto ids = SortedCorners(tets[t]);
+    put(ids[1], ids[2], ids[3], t);
+    put(ids[0], ids[2], ids[3], t);
+    put(ids[0], ids[1], ids[3], t);
+    put(ids[0], ids[1], ids[2], t);
+  }
+  // Threads fill a bucket in any order: sorting it makes the order the same for any count.
+  const std::int64_t bucketCount = static_cast<std::int64_t>(pointCount);
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(threads)
+  for (std::int64_t a = 0; a < bucketCount; ++a)
+  {
+    std::sort(entries + start[a], entries + start[a + 1]);
+  }
+  return buckets;
+}
+} // namespace
+
+std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads)
+{
+  if (pointCount >= (std::uint64_t{ 1 } << 32))
+  {
+    throw std::length_error("FindMeshFaces: more than 2^32 points");
+  }
+  const int threads = ThreadCount(numberOfThreads);
+  const FaceBuckets buckets = BucketFaces(tets, pointCount, threads);
+  const std::vector<FaceEntry>& entries = buckets.Entries;
+  const std::int64_t bucketCount = static_cast<std::int64_t>(pointCount);
+
+  // Distinct faces per bucket, then each bucket writes its faces from its own offset.
+  std::vector<std::size_t> firstFace(pointCount + 1, 0);
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(threads)
+  for (std::int64_t a = 0; a < bucketCount; ++a)
+  {
+    std::size_t distinct = 0;
+    for (std::size_t e = buckets.Start[a]; e < buckets.Start[a + 1]; ++e)
+    {
+      distinct += e == buckets.Start[a] || entries[e].Key != entries[e - 1].Key;
+    }
+    firstFace[a + 1] = distinct;
+  }
   for (std::size_t a = 0; a < pointCount; ++a)
   {
-    const auto first = entries.begin() + start[a];
-    const auto last = entries.begin() + start[a + 1];
-    for (auto it = first; it != last;)
+    firstFace[a + 1] += firstFace[a];
+  }
+  std::vector<MeshFace> faces(firstFace[pointCount]);
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(threads)
+  for (std::int64_t a = 0; a < bucketCount; ++a)
+  {
+    MeshFace* face = faces.data() + firstFace[a] - 1;
+    for (std::size_t e = buckets.Start[a]; e < buckets.Start[a + 1]; ++e)
     {
-      MeshFace face;
-      face.Points = { static_cast<PointId>(a), it->B, it->C };
-      auto next = it;
-      for (; next != last && next->B == it->B && next->C == it->C; ++next)
+      if (e == buckets.Start[a] || entries[e].Key != entries[e - 1].Key)
       {
-        if (face.TetCount < 2)
-        {
-          face.Tets[face.TetCount] = next->Tet;
-        }
-        ++face.TetCount;
+        ++face;
+        face->Points = { static_cast<PointId>(a), static_cast<PointId>(entries[e].Key / pointCount),
+          static_cast<PointId>(entries[e].Key % pointCount) };
       }
-      faces.push_back(face);
-      it = next;
+      if (face->TetCount < 2)
+      {
+        face->Tets[face->TetCount] = entries[e].Tet;
+      }
+      ++face->TetCount;
     }
   }
   return faces;
 }
 
-std::vector<std::array<std::int64_t, 4>> FaceNeighbours(const std::vector<Tet>& tets, std::size_t pointCount)
+std::vector<std::array<std::int64_t, 4>> FaceNeighbours(
+  const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads)
 {
   std::vector<std::array<std::int64_t, 4>> across(tets.size(), { -1, -1, -1, -1 });
-  for (const MeshFace& face : FindMeshFaces(tets, pointCount))
+  for (const MeshFace& face : FindMeshFaces(tets, pointCount, numberOfThreads))
   {
     if (face.TetCount != 2)
     {

@@ -18,17 +18,19 @@ struct MeshFace
 };
 
 /// Every distinct face of tets over points 0..pointCount-1 (grouped in linear time by bucketing
-/// on the smallest vertex), in ascending vertex order.
-std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount);
+/// on the smallest vertex), in ascending vertex order; the same list for any number of threads
+/// (0 = all cores).
+std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads = 1);
 
 /// The tets across each tet's faces in a conforming mesh: Across[t][i] is the tet sharing the
 /// face opposite local vertex i of tet t, or -1 on the mesh boundary.
-std::vector<std::array<std::int64_t, 4>> FaceNeighbours(const std::vector<Tet>& tets, std::size_t pointCount);
+std::vector<std::array<std::int64_t, 4>> FaceNeighbours(
+  const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads = 1);
 
 /// Every distinct face of the mesh.
-inline std::vector<MeshFace> FindMeshFaces(const TetMesh& mesh)
+inline std::vector<MeshFace> FindMeshFaces(const TetMesh& mesh, int numberOfThreads = 1)
 {
-  return FindMeshFaces(mesh.Tets, mesh.Points.size());
+  return FindMeshFaces(mesh.Tets, mesh.Points.size(), numberOfThreads);
 }
 } // namespace cbc3d
 

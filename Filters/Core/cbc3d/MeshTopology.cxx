@@ -240,6 +240,11 @@ bool MeshTopology::SolverReady() const
 
 MeshTopology MeasureMeshTopology(const TetMesh& mesh)
 {
+  return MeasureMeshTopology(mesh, FindMeshFaces(mesh));
+}
+
+MeshTopology MeasureMeshTopology(const TetMesh& mesh, const std::vector<MeshFace>& faces)
+{
   std::vector<std::int32_t> labels = mesh.Labels;
   std::sort(labels.begin(), labels.end());
   labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
@@ -251,7 +256,6 @@ MeshTopology MeasureMeshTopology(const TetMesh& mesh)
   }
 
   std::vector<RegionTopology> regions(1 + labels.size());
-  const std::vector<MeshFace> faces = FindMeshFaces(mesh);
   CountFaceComponents(faces, regionOfTet, regions);
   CountVertexComponents(mesh, regionOfTet, regions);
   const std::vector<SurfaceTriangle> triangles = SurfaceTriangles(faces, regionOfTet, regions);

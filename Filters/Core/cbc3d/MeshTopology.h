@@ -2,6 +2,7 @@
 #define cbc3d_MeshTopology_h
 
 #include "cbc3d/ImageTopology.h" // the image's side of the comparison
+#include "cbc3d/MeshFaces.h"
 #include "cbc3d/TetMesh.h"
 
 #include <cstdint>
@@ -48,6 +49,8 @@ struct MeshTopology
 /// (bucketing on vertices); faces of more than two tets (a non-conforming mesh) count only
 /// their first two tets.
 MeshTopology MeasureMeshTopology(const TetMesh& mesh);
+/// The same from the mesh's faces (FindMeshFaces), when the caller has them already.
+MeshTopology MeasureMeshTopology(const TetMesh& mesh, const std::vector<MeshFace>& faces);
 } // namespace cbc3d
 
 #endif

@@ -520,7 +520,7 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   }
 
   // Spikes on the surface would keep their tips off the image boundary through deformation.
-  const auto across = FaceNeighbours(mesh.Tets, hierarchy.Points().size());
+  const auto across = FaceNeighbours(mesh.Tets, hierarchy.Points().size(), params.NumberOfThreads);
   if (RemoveSurfaceEars(mesh.Tets, across, hierarchy.Points().size(), mesh.Labels,
         [&](std::int32_t label) { return label != NoLabel && image.IsTissue(label); }, NoLabel) > 0)
   {

@@ -7,6 +7,12 @@ namespace cbc3d
 {
 std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(const TetMesh& mesh)
 {
+  return TissueSurfaceVertices(mesh, FindMeshFaces(mesh));
+}
+
+std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(
+  const TetMesh& mesh, const std::vector<MeshFace>& faces)
+{
   // A face belongs to exactly one tet of a tissue when it is on the mesh boundary, or between
   // tets of two different tissues (an interface, on the surface of both).
   std::map<std::int32_t, std::vector<std::uint8_t>> onSurface;
@@ -18,7 +24,7 @@ std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(const TetMesh
       marks[p] = 1;
     }
   };
-  for (const MeshFace& face : FindMeshFaces(mesh))
+  for (const MeshFace& face : faces)
   {
     const std::int32_t first = mesh.Labels[face.Tets[0]];
     if (face.TetCount == 1)

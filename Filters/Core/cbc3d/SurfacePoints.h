@@ -2,6 +2,7 @@
 #define cbc3d_SurfacePoints_h
 
 #include "cbc3d/LabelImage.h"
+#include "cbc3d/MeshFaces.h"
 #include "cbc3d/TetMesh.h"
 
 #include <Eigen/Core>
@@ -18,6 +19,9 @@ namespace cbc3d
 /// faces that belong to exactly one tet of the tissue (outer boundary and interfaces alike; the
 /// mesh must conform). Ids are ascending.
 std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(const TetMesh& mesh);
+/// The same from the mesh's faces (FindMeshFaces), when the caller has them already.
+std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(
+  const TetMesh& mesh, const std::vector<MeshFace>& faces);
 
 /// Per tissue label, the indices of the tissue's boundary voxels: voxels of the tissue with a
 /// face-neighbour (6-neighbour) outside it, the image border counting as outside. Ascending,

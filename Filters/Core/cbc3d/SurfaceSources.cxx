@@ -9,9 +9,14 @@ namespace cbc3d
 {
 SurfaceSources FindSurfaceSources(const TetMesh& mesh)
 {
+  return FindSurfaceSources(mesh, FindMeshFaces(mesh));
+}
+
+SurfaceSources FindSurfaceSources(const TetMesh& mesh, const std::vector<MeshFace>& faces)
+{
   const std::size_t n = mesh.Points.size();
   std::vector<char> onSurface(n, 0), outer(n, 0);
-  for (const MeshFace& face : FindMeshFaces(mesh))
+  for (const MeshFace& face : faces)
   {
     const bool boundary = face.TetCount == 1;
     const bool interface = face.TetCount == 2 && mesh.Labels[face.Tets[0]] != mesh.Labels[face.Tets[1]];

@@ -2,6 +2,7 @@
 #define cbc3d_SurfaceSources_h
 
 #include "cbc3d/BoundaryTargets.h"
+#include "cbc3d/MeshFaces.h"
 #include "cbc3d/TetMesh.h"
 
 #include <vector>
@@ -19,6 +20,8 @@ struct SurfaceSources
 /// The mesh's surface and interface vertices, each with the labels of its tets (plus
 /// OutsideLabel on the outer surface), and every vertex's element size.
 SurfaceSources FindSurfaceSources(const TetMesh& mesh);
+/// The same from the mesh's faces (FindMeshFaces), when the caller has them already.
+SurfaceSources FindSurfaceSources(const TetMesh& mesh, const std::vector<MeshFace>& faces);
 } // namespace cbc3d
 
 #endif

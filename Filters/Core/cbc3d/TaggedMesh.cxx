@@ -72,16 +72,10 @@ void GroupSurfaces(TaggedMesh& out)
   }
   out.SurfaceStart.push_back(out.Triangles.size());
 }
-} // namespace
 
-Status BuildTaggedMesh(
-  const TetMesh& mesh, std::int32_t outside, TaggedMesh& out, const LabelCodes& codes)
+Status TagValidMesh(const TetMesh& mesh, const std::vector<MeshFace>& faces, std::int32_t outside,
+  TaggedMesh& out, const LabelCodes& codes)
 {
-  const Status valid = ValidateTetMesh(mesh);
-  if (!valid.IsOk())
-  {
-    return valid;
-  }
   out = TaggedMesh();
   out.Points = mesh.Points;
   out.Tets = mesh.Tets;
@@ -96,7 +90,7 @@ Status BuildTaggedMesh(
     return Status::Error("the outside label " + std::to_string(codes.ValueOf(outside)) +
       " is also a tissue label: choose another for the surfaces' outside");
   }
-  for (const MeshFace& face : FindMeshFaces(mesh))
+  for (const MeshFace& face : faces)
   {
     if (face.TetCount > 2)
     {
@@ -121,6 +115,21 @@ Status BuildTaggedMesh(
   }
   GroupSurfaces(out);
   return Status::Ok();
+}
+} // namespace
+
+Status BuildTaggedMesh(
+  const TetMesh& mesh, std::int32_t outside, TaggedMesh& out, const LabelCodes& codes)
+{
+  const Status valid = ValidateTetMesh(mesh);
+  return valid.IsOk() ? TagValidMesh(mesh, FindMeshFaces(mesh), outside, out, codes) : valid;
+}
+
+Status BuildTaggedMesh(const TetMesh& mesh, const std::vector<MeshFace>& faces, std::int32_t outside,
+  TaggedMesh& out, const LabelCodes& codes)
+{
+  const Status valid = ValidateTetMesh(mesh);
+  return valid.IsOk() ? TagValidMesh(mesh, faces, outside, out, codes) : valid;
 }
 
 Status RequireInt32Tissues(const TaggedMesh& mesh, const std::string& format, const std::string& why)

@@ -3,6 +3,7 @@
 
 #include "cbc3d/LabelCodes.h"
 #include "cbc3d/Status.h"
+#include "cbc3d/MeshFaces.h"
 #include "cbc3d/TetMesh.h"
 
 #include <array>
@@ -69,6 +70,9 @@ Status RequireInt32Tissues(const TaggedMesh& mesh, const std::string& format, co
 /// have more than two tets. The labels are codes of `codes` (LabelCodes.h), which names use.
 Status BuildTaggedMesh(
   const TetMesh& mesh, std::int32_t outside, TaggedMesh& out, const LabelCodes& codes = LabelCodes());
+/// The same from the mesh's faces (FindMeshFaces), when the caller has them already.
+Status BuildTaggedMesh(const TetMesh& mesh, const std::vector<MeshFace>& faces, std::int32_t outside,
+  TaggedMesh& out, const LabelCodes& codes = LabelCodes());
 
 /// The index in Surfaces of the surface between `sides` (boundary: {tissue, Outside}), or -1.
 int FindSurface(const TaggedMesh& mesh, const std::array<std::int32_t, 2>& sides);

@@ -24,12 +24,18 @@ Eigen::Vector3d AreaVector(const Eigen::Vector3d& a, const Eigen::Vector3d& b, c
 
 TissueVolumeKeeper::TissueVolumeKeeper(
   const TetMesh& mesh, std::map<std::int32_t, double> targets, double largestOffset)
+  : TissueVolumeKeeper(mesh, FindMeshFaces(mesh), std::move(targets), largestOffset)
+{
+}
+
+TissueVolumeKeeper::TissueVolumeKeeper(const TetMesh& mesh, const std::vector<MeshFace>& faces,
+  std::map<std::int32_t, double> targets, double largestOffset)
   : Targets(std::move(targets))
   , LargestOffset(largestOffset)
 {
   // The boundary and interface triangles, oriented out of their first side: the exporters'.
   TaggedMesh tagged;
-  if (!BuildTaggedMesh(mesh, Outside, tagged).IsOk())
+  if (!BuildTaggedMesh(mesh, faces, Outside, tagged).IsOk())
   {
     return; // not conforming: ValidateTetMesh's business, not a volume's
   }

@@ -1,6 +1,7 @@
 #ifndef cbc3d_TissueVolumes_h
 #define cbc3d_TissueVolumes_h
 
+#include "cbc3d/MeshFaces.h"
 #include "cbc3d/TetMesh.h"
 
 #include <Eigen/Core>
@@ -28,6 +29,9 @@ public:
   /// `targets`: the volume each tissue label should have (mm^3); tissues without one are free.
   /// `largestOffset`: no interface moves farther than this in one call (mm).
   TissueVolumeKeeper(const TetMesh& mesh, std::map<std::int32_t, double> targets, double largestOffset);
+  /// The same from the mesh's faces (FindMeshFaces), when the caller has them already.
+  TissueVolumeKeeper(const TetMesh& mesh, const std::vector<MeshFace>& faces, std::map<std::int32_t, double> targets,
+    double largestOffset);
 
   /// Each tissue's volume with the points at `x`, from its boundary faces (divergence theorem).
   std::map<std::int32_t, double> Volumes(const std::vector<Eigen::Vector3d>& x) const;

@@ -1,0 +1,110 @@
+// The faces of a tet mesh: counts with known answers on a grid of cubes, and the same list for
+// any number of threads and any vertex numbering inside the tets.
+#include "TestMeshes.h"
+
+#include "cbc3d/MeshFaces.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+
+namespace
+{
+// A block of n^3 cubes, six Kuhn tets each.
+cbc3d::TetMesh Block(int n)
+{
+  return cbc3d::testing::KuhnGrid(
+    n, n, n, [](int, int, int) { return true; }, [](int, int, int, int) { return 1; });
+}
+} // namespace
+
+TEST(MeshFaces, ABlockOfCubesHasTheFacesCountingGivesIt)
+{
+  const int n = 5;
+  const cbc3d::TetMesh mesh = Block(n);
+  const auto faces = cbc3d::FindMeshFaces(mesh);
+  // Each cube has 6 interior faces and 6 square sides of 2 triangles; a side is shared by two
+  // cubes unless it lies on the block's boundary (6 n^2 squares).
+  const std::size_t boundary = 2 * 6 * n * n;
+  const std::size_t squares = 3 * n * n * (n + 1);
+  EXPECT_EQ(faces.size(), 6u * n * n * n + 2 * squares);
+  std::size_t onBoundary = 0;
+  for (const auto& face : faces)
+  {
+    ASSERT_TRUE(face.Points[0] < face.Points[1] && face.Points[1] < face.Points[2]);
+    ASSERT_TRUE(face.TetCount == 1 || face.TetCount == 2);
+    onBoundary += face.TetCount == 1;
+    if (face.TetCount == 2)
+    {
+      EXPECT_LT(face.Tets[0], face.Tets[1]);
+    }
+  }
+  EXPECT_EQ(onBoundary, boundary);
+}
+
+TEST(MeshFaces, TheListIsTheSameForAnyThreadsAndMatchesAMapOfFaces)
+{
+  cbc3d::TetMesh mesh = Block(7);
+  // Rotate each tet's vertices differently: faces must not depend on the order inside a tet.
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    std::rotate(mesh.Tets[t].begin(), mesh.Tets[t].begin() + t % 4, mesh.Tets[t].end());
+  }
+  std::map<std::array<cbc3d::PointId, 3>, std::vector<std::int64_t>> expected;
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    for (int skip = 0; skip < 4; ++skip)
+    {
+      std::array<cbc3d::PointId, 3> face;
+      for (int i = 0, k = 0; i < 4; ++i)
+      {
+        if (i != skip)
+        {
+          face[k++] = mesh.Tets[t][i];
+        }
+      }
+      std::sort(face.begin(), face.end());
+      expected[face].push_back(static_cast<std::int64_t>(t));
+    }
+  }
+  const auto serial = cbc3d::FindMeshFaces(mesh, 1);
+  ASSERT_EQ(serial.size(), expected.size());
+  auto it = expected.begin();
+  for (const auto& face : serial)
+  {
+    ASSERT_EQ(face.Points, it->first);
+    ASSERT_EQ(face.TetCount, static_cast<int>(it->second.size()));
+    for (int side = 0; side < face.TetCount; ++side)
+    {
+      EXPECT_EQ(face.Tets[side], it->second[side]);
+    }
+    ++it;
+  }
+  for (const int threads : { 2, 3, 8 })
+  {
+    const auto parallel = cbc3d::FindMeshFaces(mesh, threads);
+    ASSERT_EQ(parallel.size(), serial.size());
+    for (std::size_t f = 0; f < serial.size(); ++f)
+    {
+      ASSERT_EQ(parallel[f].Points, serial[f].Points);
+      ASSERT_EQ(parallel[f].Tets, serial[f].Tets);
+      ASSERT_EQ(parallel[f].TetCount, serial[f].TetCount);
+    }
+  }
+}
+
+TEST(MeshFaces, ATetOverlappingAnotherMakesAFaceOfThree)
+{
+  cbc3d::TetMesh mesh = cbc3d::testing::OneTet();
+  mesh.Points.emplace_back(0.2, 0.2, -1.0);
+  mesh.Points.emplace_back(0.3, 0.3, -2.0);
+  cbc3d::testing::AddTet(mesh, { 0, 1, 2, 4 });
+  cbc3d::testing::AddTet(mesh, { 0, 1, 2, 5 });
+  const auto faces = cbc3d::FindMeshFaces(mesh, 2);
+  const auto shared = std::find_if(faces.begin(), faces.end(),
+    [](const cbc3d::MeshFace& face) { return face.Points == std::array<cbc3d::PointId, 3>{ 0, 1, 2 }; });
+  ASSERT_NE(shared, faces.end());
+  EXPECT_EQ(shared->TetCount, 3);
+  EXPECT_EQ(faces.size(), 10u);
+}
