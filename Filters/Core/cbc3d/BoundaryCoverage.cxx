@@ -30,12 +30,11 @@ BoundaryCoverage::BoundaryCoverage(const LabelImage& image, const TissueComponen
   }
 }
 
-BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>& points,
-  const std::vector<Tet>& tets, const std::vector<std::int32_t>& labels, double distance) const
+std::map<std::int32_t, std::vector<BoundaryCoverage::Face>> BoundaryCoverage::HeldSurfaces(
+  std::size_t pointCount, const std::vector<Tet>& tets, const std::vector<std::int32_t>& labels) const
 {
-  // Per tissue, the faces between one of its tets and a tet of another label, or nothing. Only
-  // the held tissues' tets are searched (a face they share with any other tet is one of theirs
-  // alone there), in their order, so the faces come in the same order as over the whole mesh.
+  // Only the held tissues' tets are searched (a face they share with any other tet is one of
+  // theirs alone there), in their order, so the faces come in the same order as over the whole mesh.
   std::vector<Tet> tissueTets;
   std::vector<std::int64_t> tetOf;
   tissueTets.reserve(tets.size());
@@ -56,7 +55,7 @@ BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>
     }
   }
   std::map<std::int32_t, std::vector<Face>> surfaces;
-  for (const MeshFace& face : FindMeshFaces(tissueTets, points.size(), this->Threads))
+  for (const MeshFace& face : FindMeshFaces(tissueTets, pointCount, this->Threads))
   {
     for (int side = 0; side < std::min(face.TetCount, 2); ++side)
     {
@@ -68,14 +67,92 @@ BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>
       }
     }
   }
+  return surfaces;
+}
 
-  Gaps gaps;
-  for (const auto& entry : this->Tissues)
+void BoundaryCoverage::FindTissueGaps(const Tissue& tissue, const std::vector<Face>& faces,
+  const std::vector<Eigen::Vector3d>& points, double distance, Gaps& gaps) const
+{
+  // The surface's vertices, numbered 0..n-1 in ascending point order, and where deformation
+  // would take each.
+  std::vector<int> index(points.size(), -1);
+  for (const Face& face : faces)
   {
-    // Named references, not a structured binding: clang 14 cannot share a binding with the
-    // OpenMP regions below (C++17 forbids capturing one).
-    const std::int32_t label = entry.first;
-    const auto& tissue = entry.second;
+    for (const PointId p : face.Points)
+    {
+      index[p] = 0;
+    }
+  }
+  std::vector<PointId> vertices;
+  for (std::size_t p = 0; p < points.size(); ++p)
+  {
+    if (index[p] == 0)
+    {
+      index[p] = static_cast<int>(vertices.size());
+      vertices.push_back(static_cast<PointId>(p));
+    }
+  }
+  const std::int64_t vertexCount = static_cast<std::int64_t>(vertices.size());
+  std::vector<Eigen::Vector3d> predicted(vertexCount);
+  std::vector<char> stranded(vertexCount, 0);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
+  for (std::int64_t i = 0; i < vertexCount; ++i)
+  {
+    const Eigen::Vector3d& x = points[vertices[i]];
+    const int nearest = tissue.Grid->Nearest(x, this->Reach);
+    predicted[i] = nearest < 0 ? x : tissue.Centres[nearest];
+    stranded[i] = nearest < 0;
+  }
+  std::vector<Eigen::Vector3d> centroids;
+  for (const Face& face : faces)
+  {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (const PointId p : face.Points)
+    {
+      centroid += predicted[index[p]] / 3.0;
+      if (stranded[index[p]])
+      {
+        gaps.StrandedTets.push_back(face.Tet);
+      }
+    }
+    centroids.push_back(centroid);
+  }
+
+  const double cell = std::max(distance, 1e-6);
+  const PointGrid vertexGrid(predicted, cell), faceGrid(centroids, cell);
+  const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Centres.size());
+  std::vector<int> nearestFace(voxelCount, -1);
+  double largest = 0.0; // a max reduction is exact: the same for any thread count
+#pragma omp parallel for schedule(dynamic, 1024) reduction(max : largest) num_threads(ThreadCount(this->Threads))
+  for (std::int64_t i = 0; i < voxelCount; ++i)
+  {
+    const Eigen::Vector3d& centre = tissue.Centres[i];
+    const double gap = (predicted[vertexGrid.NearestAny(centre)] - centre).norm();
+    largest = std::max(largest, gap);
+    if (gap > distance)
+    {
+      nearestFace[i] = faceGrid.NearestAny(centre);
+    }
+  }
+  gaps.LargestGap = std::max(gaps.LargestGap, largest);
+  std::vector<char> taken(faces.size(), 0);
+  for (const int f : nearestFace) // in voxel order: the same for any thread count
+  {
+    if (f >= 0 && !taken[f])
+    {
+      taken[f] = 1;
+      gaps.FarFaces.push_back(faces[f]);
+    }
+  }
+}
+
+BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>& points,
+  const std::vector<Tet>& tets, const std::vector<std::int32_t>& labels, double distance) const
+{
+  std::map<std::int32_t, std::vector<Face>> surfaces = this->HeldSurfaces(points.size(), tets, labels);
+  Gaps gaps;
+  for (const auto& [label, tissue] : this->Tissues)
+  {
     const std::vector<Face>& faces = surfaces[label];
     if (faces.empty() || tissue.Centres.empty())
     {
@@ -83,69 +160,7 @@ BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>
                                                                  : gaps.LargestGap;
       continue;
     }
-    // The surface's vertices, numbered 0..n-1, and where deformation would take each.
-    std::vector<PointId> vertices;
-    for (const Face& face : faces)
-    {
-      vertices.insert(vertices.end(), face.Points.begin(), face.Points.end());
-    }
-    std::sort(vertices.begin(), vertices.end());
-    vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
-    auto indexOf = [&vertices](PointId p) {
-      return static_cast<int>(std::lower_bound(vertices.begin(), vertices.end(), p) - vertices.begin());
-    };
-    const std::int64_t vertexCount = static_cast<std::int64_t>(vertices.size());
-    std::vector<Eigen::Vector3d> predicted(vertexCount);
-    std::vector<char> stranded(vertexCount, 0);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
-    for (std::int64_t i = 0; i < vertexCount; ++i)
-    {
-      const Eigen::Vector3d& x = points[vertices[i]];
-      const int nearest = tissue.Grid->Nearest(x, this->Reach);
-      predicted[i] = nearest < 0 ? x : tissue.Centres[nearest];
-      stranded[i] = nearest < 0;
-    }
-    std::vector<Eigen::Vector3d> centroids;
-    for (const Face& face : faces)
-    {
-      Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-      for (const PointId p : face.Points)
-      {
-        centroid += predicted[indexOf(p)] / 3.0;
-        if (stranded[indexOf(p)])
-        {
-          gaps.StrandedTets.push_back(face.Tet);
-        }
-      }
-      centroids.push_back(centroid);
-    }
-
-    const double cell = std::max(distance, 1e-6);
-    const PointGrid vertexGrid(predicted, cell), faceGrid(centroids, cell);
-    const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Centres.size());
-    std::vector<int> nearestFace(voxelCount, -1);
-    double largest = 0.0; // a max reduction is exact: the same for any thread count
-#pragma omp parallel for schedule(dynamic, 1024) reduction(max : largest) num_threads(ThreadCount(this->Threads))
-    for (std::int64_t i = 0; i < voxelCount; ++i)
-    {
-      const Eigen::Vector3d& centre = tissue.Centres[i];
-      const double gap = (predicted[vertexGrid.NearestAny(centre)] - centre).norm();
-      largest = std::max(largest, gap);
-      if (gap > distance)
-      {
-        nearestFace[i] = faceGrid.NearestAny(centre);
-      }
-    }
-    gaps.LargestGap = std::max(gaps.LargestGap, largest);
-    std::vector<char> taken(faces.size(), 0);
-    for (const int f : nearestFace) // in voxel order: the same for any thread count
-    {
-      if (f >= 0 && !taken[f])
-      {
-        taken[f] = 1;
-        gaps.FarFaces.push_back(faces[f]);
-      }
-    }
+    this->FindTissueGaps(tissue, faces, points, distance, gaps);
   }
   std::sort(gaps.StrandedTets.begin(), gaps.StrandedTets.end());
   gaps.StrandedTets.erase(std::unique(gaps.StrandedTets.begin(), gaps.StrandedTets.end()), gaps.StrandedTets.end());

@@ -57,6 +57,12 @@ private:
     std::vector<Eigen::Vector3d> Centres;
     std::unique_ptr<PointGrid> Grid;
   };
+  /// Per held tissue, the faces between one of its tets and a tet of another label, or nothing.
+  std::map<std::int32_t, std::vector<Face>> HeldSurfaces(std::size_t pointCount, const std::vector<Tet>& tets,
+    const std::vector<std::int32_t>& labels) const;
+  /// Adds one tissue's gaps, given its surface `faces` (not empty) and boundary voxels.
+  void FindTissueGaps(const Tissue& tissue, const std::vector<Face>& faces,
+    const std::vector<Eigen::Vector3d>& points, double distance, Gaps& gaps) const;
   std::map<std::int32_t, Tissue> Tissues;
   double Reach;
   int Threads;

@@ -352,6 +352,50 @@ Status ValidateInputs(const LabelImage& image, const TetMesh& mesh, const Deform
   }
   return Status::Ok();
 }
+
+// The registration iterations, until `iterations` are done, a step would spoil tets, or the
+// surface stops approaching the image; false when stopped by the user.
+bool RunIterations(Registration& registration, int iterations, std::size_t sourceCount,
+  std::vector<Eigen::Vector3d>& x, StopRequests& stops, DeformationResult& result)
+{
+  // A huge iteration count ends once the surface stops approaching the image: its vertices
+  // keep jittering by up to a voxel, but their mean distance to their goals levels off.
+  constexpr int Patience = 5; // iterations without a 1% gain; 5 iterations or fewer never stop
+  double closest = std::numeric_limits<double>::infinity();
+  int withoutGain = 0;
+  for (int iteration = 0; iteration < iterations; ++iteration)
+  {
+    double moved = 0.0;
+    std::size_t held = 0;
+    const StepOutcome outcome =
+      registration.Iterate(x, 0.1 + 0.9 * double(iteration) / iterations, stops, moved, held);
+    if (outcome == StepOutcome::Aborted)
+    {
+      return false;
+    }
+    if (outcome == StepOutcome::Spoilt)
+    {
+      result.StopReason = "a step could not be made without spoiling tets; the previous mesh is kept";
+      break;
+    }
+    ++result.Iterations;
+    result.MeanStep.push_back(moved / double(sourceCount));
+    result.HeldVertices.push_back(held);
+    if (stops.Stopped(0.1 + 0.9 * double(iteration + 1) / iterations))
+    {
+      return false;
+    }
+    withoutGain = result.MeanStep.back() < 0.99 * closest ? 0 : withoutGain + 1;
+    closest = std::min(closest, result.MeanStep.back());
+    if (withoutGain == Patience)
+    {
+      result.StopReason = "settled after " + std::to_string(result.Iterations) +
+        " iterations: the last " + std::to_string(Patience) + " brought the surface no closer to the image";
+      break;
+    }
+  }
+  return true;
+}
 } // namespace
 
 Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
@@ -413,41 +457,9 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   std::vector<Eigen::Vector3d>& x = out.Points;
   Registration registration(mesh, sources, matcher, fidelity, stiffness, params, bound,
     0.01 * image.Spacing.minCoeff());
-  // A huge iteration count ends once the surface stops approaching the image: its vertices
-  // keep jittering by up to a voxel, but their mean distance to their goals levels off.
-  constexpr int Patience = 5; // iterations without a 1% gain; 5 iterations or fewer never stop
-  double closest = std::numeric_limits<double>::infinity();
-  int withoutGain = 0;
-  for (int iteration = 0; iteration < params.Iterations; ++iteration)
+  if (!RunIterations(registration, params.Iterations, sources.Points.size(), x, stops, result))
   {
-    double moved = 0.0;
-    std::size_t held = 0;
-    const StepOutcome outcome =
-      registration.Iterate(x, 0.1 + 0.9 * double(iteration) / params.Iterations, stops, moved, held);
-    if (outcome == StepOutcome::Aborted)
-    {
-      return Status::Aborted();
-    }
-    if (outcome == StepOutcome::Spoilt)
-    {
-      result.StopReason = "a step could not be made without spoiling tets; the previous mesh is kept";
-      break;
-    }
-    ++result.Iterations;
-    result.MeanStep.push_back(moved / double(sources.Points.size()));
-    result.HeldVertices.push_back(held);
-    if (stops.Stopped(0.1 + 0.9 * double(iteration + 1) / params.Iterations))
-    {
-      return Status::Aborted();
-    }
-    withoutGain = result.MeanStep.back() < 0.99 * closest ? 0 : withoutGain + 1;
-    closest = std::min(closest, result.MeanStep.back());
-    if (withoutGain == Patience)
-    {
-      result.StopReason = "settled after " + std::to_string(result.Iterations) +
-        " iterations: the last " + std::to_string(Patience) + " brought the surface no closer to the image";
-      break;
-    }
+    return Status::Aborted();
   }
   if (params.KeepVolumes && result.Iterations > 0)
   {

@@ -3,6 +3,7 @@
 #include "cbc3d/Parallel.h"
 
 #include <algorithm>
+#include <memory>
 #include <stdexcept>
 
 namespace cbc3d
@@ -43,7 +44,7 @@ std::array<PointId, 4> SortedCorners(const Tet& tet)
 struct FaceBuckets
 {
   std::vector<std::size_t> Start;
-  std::vector<FaceEntry> Entries;
+  std::unique_ptr<FaceEntry[]> Entries; // not zeroed: the threads' fill touches it first
 };
 
 FaceBuckets BucketFaces(const std::vector<Tet>& tets, std::uint64_t pointCount, int threads)
@@ -66,10 +67,10 @@ FaceBuckets BucketFaces(const std::vector<Tet>& tets, std::uint64_t pointCount, 
   {
     start[p + 1] += start[p];
   }
-  buckets.Entries.resize(start[pointCount]);
+  buckets.Entries.reset(new FaceEntry[start[pointCount]]);
   std::vector<std::size_t> fill(buckets.Start.begin(), buckets.Start.end() - 1);
   std::size_t* next = fill.data();
-  FaceEntry* entries = buckets.Entries.data();
+  FaceEntry* entries = buckets.Entries.get();
   auto put = [&](PointId a, PointId b, PointId c, std::int64_t t) {
     std::size_t slot;
 #pragma omp atomic capture
@@ -104,7 +105,7 @@ std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t po
   }
   const int threads = ThreadCount(numberOfThreads);
   const FaceBuckets buckets = BucketFaces(tets, pointCount, threads);
-  const std::vector<FaceEntry>& entries = buckets.Entries;
+  const FaceEntry* entries = buckets.Entries.get();
   const std::int64_t bucketCount = static_cast<std::int64_t>(pointCount);
 
   // Distinct faces per bucket, then each bucket writes its faces from its own offset.

@@ -55,12 +55,34 @@ bool StopAt(std::size_t red, const std::function<bool()>& keepGoing)
 
 RedGreenMesh::RedGreenMesh(const TetMesh& roots)
   : PointList(roots.Points)
+  , TouchedAt(roots.Points.size(), 0)
+  , ClosedAt(roots.Tets.size(), 0)
+  , ParentEdge(roots.Points.size(), { -1, -1 })
 {
   this->RedList.reserve(roots.Tets.size());
   for (const Tet& tet : roots.Tets)
   {
     this->RedList.push_back(RedTet{ tet, 0, true });
   }
+}
+
+void RedGreenMesh::Touch(PointId p)
+{
+  this->TouchedAt[p] = this->Clock;
+  for (const PointId end : this->ParentEdge[p])
+  {
+    if (end >= 0)
+    {
+      this->TouchedAt[end] = this->Clock;
+    }
+  }
+}
+
+bool RedGreenMesh::MayHaveChanged(std::size_t red) const
+{
+  const std::uint64_t closed = this->ClosedAt[red];
+  const Tet& tet = this->RedList[red].Points;
+  return closed == 0 || std::any_of(tet.begin(), tet.end(), [&](PointId p) { return this->TouchedAt[p] > closed; });
 }
 
 PointId RedGreenMesh::FindMidpoint(PointId a, PointId b) const
@@ -75,6 +97,11 @@ PointId RedGreenMesh::Midpoint(PointId a, PointId b)
   if (inserted.second)
   {
     this->PointList.push_back(0.5 * (this->PointList[a] + this->PointList[b]));
+    ++this->Clock;
+    this->TouchedAt.push_back(this->Clock);
+    this->ParentEdge.push_back({ a, b });
+    this->Touch(a);
+    this->Touch(b);
   }
   return inserted.first->second;
 }
@@ -157,6 +184,7 @@ void RedGreenMesh::SplitRed(std::size_t red)
   {
     this->RedList.push_back(
       RedTet{ Tet{ local[child[0]], local[child[1]], local[child[2]], local[child[3]] }, level + 1, true });
+    this->ClosedAt.push_back(0);
   }
 }
 
@@ -173,8 +201,16 @@ bool RedGreenMesh::Close(const std::function<bool()>& keepGoing)
       {
         return false;
       }
+      if (!this->RedList[red].Leaf || !this->MayHaveChanged(red))
+      {
+        continue;
+      }
       const Tet tet = this->RedList[red].Points;
-      if (this->RedList[red].Leaf && !this->HasClosure(tet))
+      if (this->HasClosure(tet))
+      {
+        this->ClosedAt[red] = this->Clock;
+      }
+      else
       {
         const int third = ThirdEdgeOfFace(this->SplitMask(tet));
         if (third >= 0)

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <unordered_map>
@@ -64,9 +65,22 @@ private:
   std::uint8_t SplitMask(const Tet& tet) const;
   bool HasClosure(const Tet& tet) const;
 
+  /// Whether a leaf already found closed may have lost its closure: a new midpoint changes the
+  /// closures only of tets with its edge's points among their corners and edge midpoints, and
+  /// each of those tets has a corner among the edge's points or their parent edges' points.
+  bool MayHaveChanged(std::size_t red) const;
+  void Touch(PointId p);
+
   std::vector<Eigen::Vector3d> PointList;
   std::vector<RedTet> RedList;
   std::unordered_map<std::uint64_t, PointId> Midpoints; // key: the edge's two point ids
+  // Closure bookkeeping: a clock that ticks with every new midpoint, the tick at which each
+  // point was last touched by one, each red's tick when it was last found closed (0: never),
+  // and each point's parent edge (-1 for the roots' points).
+  std::uint64_t Clock = 1;
+  std::vector<std::uint64_t> TouchedAt;
+  std::vector<std::uint64_t> ClosedAt;
+  std::vector<std::array<PointId, 2>> ParentEdge;
 };
 } // namespace cbc3d
 

@@ -1,13 +1,18 @@
+#include "TestMeshes.h"
+
+#include "cbc3d/MeshFaces.h"
 #include "cbc3d/RedGreenMesh.h"
 #include "cbc3d/RedGreenTables.h"
 #include "cbc3d/TetGeometry.h"
 #include "cbc3d/TetTopology.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <map>
+#include <random>
 #include <set>
 
 namespace
@@ -265,4 +270,57 @@ TEST(RedGreenMesh, ClosingAndBuildingStopWhenAsked)
   EXPECT_FALSE(mesh.BuildConforming(tets, source, stop));
   EXPECT_TRUE(mesh.BuildConforming(tets, source, [] { return true; }));
   EXPECT_FALSE(tets.empty());
+}
+
+TEST(RedGreenMesh, RepeatedRandomSplitsAndClosuresKeepTheMeshConforming)
+{
+  // Closing again after more splits re-checks only the leaves near new midpoints: after every
+  // round the mesh must still fill the block exactly, with no face inside it left unshared
+  // (a point hanging on an edge or a face leaves such faces) and none shared by three tets.
+  const int n = 3;
+  const cbc3d::TetMesh roots = cbc3d::testing::KuhnGrid(
+    n, n, n, [](int, int, int) { return true; }, [](int, int, int, int) { return 1; });
+  cbc3d::RedGreenMesh mesh(roots);
+  std::mt19937 random(7);
+  for (int round = 0; round < 6; ++round)
+  {
+    const std::size_t reds = mesh.Reds().size();
+    for (int split = 0; split < 3; ++split)
+    {
+      const std::size_t red = random() % reds;
+      if (mesh.Reds()[red].Leaf && mesh.Reds()[red].Level < 3)
+      {
+        mesh.SplitRed(red);
+      }
+    }
+    const std::size_t red = random() % reds;
+    if (mesh.Reds()[red].Leaf && mesh.Reds()[red].Level < 3)
+    {
+      const cbc3d::Tet& tet = mesh.Reds()[red].Points;
+      mesh.SplitEdge(tet[0], tet[1 + random() % 3]);
+    }
+    ASSERT_TRUE(mesh.Close());
+
+    std::vector<cbc3d::Tet> tets;
+    std::vector<std::int64_t> source;
+    ASSERT_TRUE(mesh.BuildConforming(tets, source));
+    const auto& p = mesh.Points();
+    double volume = 0.0;
+    for (const auto& tet : tets)
+    {
+      volume += cbc3d::SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]);
+    }
+    EXPECT_NEAR(volume, n * n * n, 1e-9) << "round " << round;
+    double boundaryArea = 0.0;
+    for (const auto& face : cbc3d::FindMeshFaces(tets, p.size()))
+    {
+      ASSERT_LE(face.TetCount, 2) << "round " << round;
+      if (face.TetCount == 1)
+      {
+        const auto& q = face.Points;
+        boundaryArea += 0.5 * (p[q[1]] - p[q[0]]).cross(p[q[2]] - p[q[0]]).norm();
+      }
+    }
+    EXPECT_NEAR(boundaryArea, 6.0 * n * n, 1e-9) << "round " << round;
+  }
 }
