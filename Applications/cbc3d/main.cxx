@@ -30,6 +30,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <malloc.h>
 #include <new>
 #include <stdexcept>
 #include <unistd.h>
@@ -303,10 +304,21 @@ int Run(int argc, char* argv[])
   }
   return 0;
 }
+
+// glibc hands large freed blocks back to the kernel at once, so every refinement pass and
+// deformation round faults the pages of its new arrays in again (several microseconds a page
+// on a virtual machine: a tenth of a run's time on the heads). Keeping freed memory for reuse
+// halves the page faults; the peak grows by about 2%.
+void KeepFreedMemory()
+{
+  mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024); // glibc's largest: bigger blocks are still mapped
+  mallopt(M_TRIM_THRESHOLD, 1024 * 1024 * 1024);
+}
 } // namespace
 
 int main(int argc, char* argv[])
 {
+  KeepFreedMemory();
   // A run too large for the machine ends with a message, not an abort; the output, written to
   // a temporary file and renamed only when whole, is not left half-made.
   InstallStopHandlers();
