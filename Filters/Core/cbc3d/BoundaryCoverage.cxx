@@ -55,8 +55,7 @@ std::map<std::int32_t, std::vector<BoundaryCoverage::Face>> BoundaryCoverage::He
     }
   }
   std::map<std::int32_t, std::vector<Face>> surfaces;
-  for (const MeshFace& face : FindMeshFaces(tissueTets, pointCount, this->Threads))
-  {
+  VisitMeshFaces(tissueTets, pointCount, this->Threads, [&](const MeshFace& face) {
     for (int side = 0; side < std::min(face.TetCount, 2); ++side)
     {
       const std::int64_t tet = tetOf[face.Tets[side]];
@@ -66,7 +65,7 @@ std::map<std::int32_t, std::vector<BoundaryCoverage::Face>> BoundaryCoverage::He
         surfaces[labels[tet]].push_back({ face.Points, tet });
       }
     }
-  }
+  });
   return surfaces;
 }
 

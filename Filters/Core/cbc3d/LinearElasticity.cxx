@@ -56,6 +56,125 @@ Eigen::Matrix<double, 12, 12> TetStiffness(const TetMesh& mesh, const Tet& tet, 
 }
 } // namespace
 
+namespace
+{
+// Point p's neighbours (itself included), ascending, are Neighbours[RowStart[p]..RowStart[p+1]):
+// its 3x3 blocks in the matrix.
+struct BlockPattern
+{
+  std::vector<std::int64_t> RowStart;
+  std::vector<PointId> Neighbours;
+};
+
+void NeighboursOf(const TetMesh& mesh, const PointTets& around, std::int64_t p, std::vector<PointId>& list)
+{
+  list.clear();
+  for (std::int64_t i = around.Start[p]; i < around.Start[p + 1]; ++i)
+    for (const PointId q : mesh.Tets[around.Tets[i]])
+      list.push_back(q);
+  list.push_back(p); // a point in no tet still has its own block
+  std::sort(list.begin(), list.end());
+  list.erase(std::unique(list.begin(), list.end()), list.end());
+}
+
+// Counted, then filled, each pass in parallel over the points.
+BlockPattern FindBlockPattern(const TetMesh& mesh, const PointTets& around, int threads)
+{
+  const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
+  BlockPattern pattern;
+  pattern.RowStart.assign(n + 1, 0);
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<PointId> list;
+#pragma omp for schedule(dynamic, 1024)
+    for (std::int64_t p = 0; p < n; ++p)
+    {
+      NeighboursOf(mesh, around, p, list);
+      pattern.RowStart[p + 1] = static_cast<std::int64_t>(list.size());
+    }
+  }
+  for (std::int64_t p = 0; p < n; ++p)
+    pattern.RowStart[p + 1] += pattern.RowStart[p];
+  pattern.Neighbours.resize(pattern.RowStart[n]);
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<PointId> list;
+#pragma omp for schedule(dynamic, 1024)
+    for (std::int64_t p = 0; p < n; ++p)
+    {
+      NeighboursOf(mesh, around, p, list);
+      std::copy(list.begin(), list.end(), pattern.Neighbours.begin() + pattern.RowStart[p]);
+    }
+  }
+  return pattern;
+}
+
+// Column-major storage of a symmetric matrix: column 3p+c lists the rows of p's blocks, zeros.
+// Written straight into the matrix's arrays: copying them in took most of a second.
+void SetUpColumns(const BlockPattern& pattern, int threads, Eigen::SparseMatrix<double>& stiffness)
+{
+  const std::int64_t n = static_cast<std::int64_t>(pattern.RowStart.size()) - 1;
+  const std::int64_t blocks = pattern.RowStart[n];
+  stiffness.resize(static_cast<int>(3 * n), static_cast<int>(3 * n));
+  stiffness.resizeNonZeros(static_cast<Eigen::Index>(9 * blocks));
+  int* outer = stiffness.outerIndexPtr();
+  int* inner = stiffness.innerIndexPtr();
+  double* values = stiffness.valuePtr();
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
+  for (std::int64_t p = 0; p < n; ++p)
+  {
+    const std::int64_t first = pattern.RowStart[p], last = pattern.RowStart[p + 1];
+    std::fill(values + 9 * first, values + 9 * last, 0.0);
+    for (int c = 0; c < 3; ++c)
+    {
+      std::int64_t k = 9 * first + 3 * (last - first) * c;
+      outer[3 * p + c] = static_cast<int>(k);
+      for (std::int64_t q = first; q < last; ++q)
+        for (int r = 0; r < 3; ++r)
+          inner[k++] = static_cast<int>(3 * pattern.Neighbours[q] + r);
+    }
+  }
+  outer[3 * n] = static_cast<int>(9 * blocks);
+}
+
+// Adds the matrices of tets begin..end-1 (local[t - begin]) into the columns of their points.
+// Each point's columns are written by one thread, its tets taken in ascending order
+// (`next[p]`: p's first tet not added yet), so every sum runs in tet order, as a serial
+// loop over the tets would add it: the same matrix for any thread count.
+void AddTetMatrices(const TetMesh& mesh, const PointTets& around, const BlockPattern& pattern,
+  const std::vector<Eigen::Matrix<double, 12, 12>>& local, std::int64_t begin, std::int64_t end,
+  std::vector<std::int64_t>& next, int threads, Eigen::SparseMatrix<double>& stiffness)
+{
+  const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
+  const int* outer = stiffness.outerIndexPtr();
+  double* values = stiffness.valuePtr();
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
+  for (std::int64_t p = 0; p < n; ++p)
+  {
+    const auto first = pattern.Neighbours.begin() + pattern.RowStart[p];
+    const auto last = pattern.Neighbours.begin() + pattern.RowStart[p + 1];
+    for (; next[p] < around.Start[p + 1] && around.Tets[next[p]] < end; ++next[p])
+    {
+      const std::int64_t t = around.Tets[next[p]];
+      const Tet& tet = mesh.Tets[t];
+      const int b = static_cast<int>(std::find(tet.begin(), tet.end(), p) - tet.begin()); // column point
+      for (int a = 0; a < 4; ++a) // row point
+      {
+        const std::int64_t slot = std::lower_bound(first, last, tet[a]) - first;
+        for (int c = 0; c < 3; ++c)
+        {
+          double* column = values + outer[3 * p + c] + 3 * slot;
+          for (int r = 0; r < 3; ++r)
+          {
+            column[r] += local[t - begin](3 * a + r, 3 * b + c);
+          }
+        }
+      }
+    }
+  }
+}
+} // namespace
+
 Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
   const std::map<std::int32_t, Material>& materials, const Material& fallback, int numberOfThreads,
   const Progress& progress)
@@ -67,68 +186,24 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
   // Every return names this one matrix, so it is built in place (Eigen 3.4's sparse matrix has
   // no move constructor: any other return would copy it).
   Eigen::SparseMatrix<double> stiffness;
-  const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
-  // Point p's neighbours (itself included), ascending, are neighbours[rowStart[p]..rowStart[p+1]).
-  std::vector<std::int64_t> rowStart(n + 1, 0); // in blocks
-  std::vector<PointId> neighbours;
+  const int threads = ThreadCount(numberOfThreads);
+  const PointTets around(mesh.Tets, mesh.Points.size());
+  if (!KeepGoing(progress, 0.1))
   {
-    const PointTets around(mesh.Tets, static_cast<std::size_t>(n));
-    if (!KeepGoing(progress, 0.1))
-    {
-      return stiffness;
-    }
-    neighbours.reserve(16 * static_cast<std::size_t>(n)); // a lattice point has 14 and itself
-    std::vector<PointId> list;
-    for (std::int64_t p = 0; p < n; ++p)
-    {
-      list.clear();
-      for (std::int64_t i = around.Start[p]; i < around.Start[p + 1]; ++i)
-        for (const PointId q : mesh.Tets[around.Tets[i]])
-          list.push_back(q);
-      list.push_back(p); // a point in no tet still has its own block
-      std::sort(list.begin(), list.end());
-      list.erase(std::unique(list.begin(), list.end()), list.end());
-      neighbours.insert(neighbours.end(), list.begin(), list.end());
-      rowStart[p + 1] = static_cast<std::int64_t>(neighbours.size());
-    }
+    return stiffness;
   }
-  auto neighboursOf = [&](PointId p) {
-    return std::make_pair(neighbours.begin() + rowStart[p], neighbours.begin() + rowStart[p + 1]);
-  };
+  const BlockPattern pattern = FindBlockPattern(mesh, around, threads);
   if (!KeepGoing(progress, 0.2))
   {
     return stiffness;
   }
-  // Column-major storage of a symmetric matrix: column 3p+c lists the rows of p's blocks.
-  // Written straight into the matrix's arrays: copying them in took most of a second.
-  const std::int64_t blocks = rowStart[n];
-  const int dofs = static_cast<int>(3 * n);
-  stiffness.resize(dofs, dofs);
-  stiffness.resizeNonZeros(static_cast<Eigen::Index>(9 * blocks));
-  int* outer = stiffness.outerIndexPtr();
-  int* inner = stiffness.innerIndexPtr();
-  double* values = stiffness.valuePtr();
-  std::fill(values, values + 9 * blocks, 0.0);
-  for (std::int64_t p = 0; p < n; ++p)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      const std::int64_t column = 3 * p + c;
-      const std::int64_t first = 9 * rowStart[p] + 3 * (rowStart[p + 1] - rowStart[p]) * c;
-      outer[column] = static_cast<int>(first);
-      std::int64_t k = first;
-      for (auto [q, last] = neighboursOf(p); q != last; ++q)
-        for (int r = 0; r < 3; ++r)
-          inner[k++] = static_cast<int>(3 * *q + r);
-    }
-  }
-  outer[3 * n] = static_cast<int>(9 * blocks);
+  SetUpColumns(pattern, threads, stiffness);
 
-  // Tets in parallel compute their matrices; the additions run in tet order, so the sums are
-  // the same for any thread count.
+  // Tets in batches (their 12x12 matrices take 1152 bytes each), computed in parallel.
   const std::int64_t tetCount = static_cast<std::int64_t>(mesh.Tets.size());
-  constexpr std::int64_t batch = 8192;
+  constexpr std::int64_t batch = 32768;
   std::vector<Eigen::Matrix<double, 12, 12>> local(static_cast<std::size_t>(std::min(batch, tetCount)));
+  std::vector<std::int64_t> next(around.Start.begin(), around.Start.end() - 1);
   for (std::int64_t begin = 0; begin < tetCount; begin += batch)
   {
     if (!KeepGoing(progress, 0.3 + 0.7 * double(begin) / double(tetCount)))
@@ -136,33 +211,13 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
       return stiffness;
     }
     const std::int64_t end = std::min(tetCount, begin + batch);
-#pragma omp parallel for schedule(static) num_threads(ThreadCount(numberOfThreads))
+#pragma omp parallel for schedule(static) num_threads(threads)
     for (std::int64_t t = begin; t < end; ++t)
     {
       const auto found = materials.find(mesh.Labels[t]);
       local[t - begin] = TetStiffness(mesh, mesh.Tets[t], found == materials.end() ? fallback : found->second);
     }
-    for (std::int64_t t = begin; t < end; ++t)
-    {
-      const Tet& tet = mesh.Tets[t];
-      for (int b = 0; b < 4; ++b) // column point
-      {
-        const PointId p = tet[b];
-        const auto [first, last] = neighboursOf(p);
-        for (int a = 0; a < 4; ++a) // row point
-        {
-          const std::int64_t slot = std::lower_bound(first, last, tet[a]) - first;
-          for (int c = 0; c < 3; ++c)
-          {
-            double* column = values + outer[3 * p + c] + 3 * slot;
-            for (int r = 0; r < 3; ++r)
-            {
-              column[r] += local[t - begin](3 * a + r, 3 * b + c);
-            }
-          }
-        }
-      }
-    }
+    AddTetMatrices(mesh, around, pattern, local, begin, end, next, threads, stiffness);
   }
   return stiffness;
 }

@@ -3,6 +3,7 @@
 #include "cbc3d/Parallel.h"
 
 #include <algorithm>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 
@@ -147,15 +148,51 @@ std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t po
   return faces;
 }
 
+void VisitMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads,
+  const std::function<void(const MeshFace&)>& visit)
+{
+  if (pointCount >= (std::uint64_t{ 1 } << 32))
+  {
+    throw std::length_error("VisitMeshFaces: more than 2^32 points");
+  }
+  const FaceBuckets buckets = BucketFaces(tets, pointCount, ThreadCount(numberOfThreads));
+  const FaceEntry* entries = buckets.Entries.get();
+  MeshFace face;
+  for (std::size_t a = 0; a < pointCount; ++a)
+  {
+    for (std::size_t e = buckets.Start[a]; e < buckets.Start[a + 1]; ++e)
+    {
+      if (e == buckets.Start[a] || entries[e].Key != entries[e - 1].Key)
+      {
+        if (e != buckets.Start[a])
+        {
+          visit(face);
+        }
+        face = MeshFace();
+        face.Points = { static_cast<PointId>(a), static_cast<PointId>(entries[e].Key / pointCount),
+          static_cast<PointId>(entries[e].Key % pointCount) };
+      }
+      if (face.TetCount < 2)
+      {
+        face.Tets[face.TetCount] = entries[e].Tet;
+      }
+      ++face.TetCount;
+    }
+    if (buckets.Start[a] != buckets.Start[a + 1])
+    {
+      visit(face);
+    }
+  }
+}
+
 std::vector<std::array<std::int64_t, 4>> FaceNeighbours(
   const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads)
 {
   std::vector<std::array<std::int64_t, 4>> across(tets.size(), { -1, -1, -1, -1 });
-  for (const MeshFace& face : FindMeshFaces(tets, pointCount, numberOfThreads))
-  {
+  VisitMeshFaces(tets, pointCount, numberOfThreads, [&](const MeshFace& face) {
     if (face.TetCount != 2)
     {
-      continue;
+      return;
     }
     for (int side = 0; side < 2; ++side)
     {
@@ -168,7 +205,7 @@ std::vector<std::array<std::int64_t, 4>> FaceNeighbours(
         }
       }
     }
-  }
+  });
   return across;
 }
 } // namespace cbc3d

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace cbc3d
@@ -21,6 +22,11 @@ struct MeshFace
 /// on the smallest vertex), in ascending vertex order; the same list for any number of threads
 /// (0 = all cores).
 std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads = 1);
+
+/// Calls `visit` for every distinct face, in FindMeshFaces' order, without keeping the list:
+/// for callers that want a few of the faces of a large mesh.
+void VisitMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads,
+  const std::function<void(const MeshFace&)>& visit);
 
 /// The tets across each tet's faces in a conforming mesh: Across[t][i] is the tet sharing the
 /// face opposite local vertex i of tet t, or -1 on the mesh boundary.

@@ -87,6 +87,7 @@ std::vector<TissueVolumeKeeper::PointPairArea> TissueVolumeKeeper::AreasAtMoving
   const std::vector<Eigen::Vector3d>& x, const std::vector<char>& moving) const
 {
   std::vector<PointPairArea> areas;
+  areas.reserve(3 * this->Faces.size()); // growing it copied the entries again and again
   for (const InterfaceFace& face : this->Faces)
   {
     const Eigen::Vector3d area = AreaVector(x[face.Points[0]], x[face.Points[1]], x[face.Points[2]]);

@@ -6,6 +6,7 @@
 #include "cbc3d/TetGeometry.h"
 
 #include "TestImages.h"
+#include "TestMeshes.h"
 #include "TestProgress.h"
 
 #include <Eigen/Geometry>
@@ -93,6 +94,28 @@ TEST(LinearElasticity, RigidMotionsCostNothingAndUniaxialStrainHasItsKnownEnergy
   // A stiffer tissue doubles its share.
   const Eigen::SparseMatrix<double> stiffer = cbc3d::AssembleStiffness(mesh, { { 1, { 6.0, 0.25 } } }, material, 1);
   EXPECT_NEAR(stretch.dot(stiffer * stretch), 2.0 * stretch.dot(k * stretch), 1e-12);
+}
+
+TEST(LinearElasticity, ABlockOfSeveralBatchesIsTheSameForAnyThreadsAndKnowsItsEnergy)
+{
+  // 48,000 tets: more than one batch of tet matrices, added point by point in parallel.
+  const int n = 20;
+  const cbc3d::TetMesh mesh = cbc3d::testing::KuhnGrid(
+    n, n, n, [](int, int, int) { return true; }, [](int, int, int, int) { return 1; });
+  const cbc3d::Material material{ 3.0, 0.25 };
+  const Eigen::SparseMatrix<double> serial = cbc3d::AssembleStiffness(mesh, {}, material, 1);
+  const Eigen::SparseMatrix<double> parallel = cbc3d::AssembleStiffness(mesh, {}, material, 3);
+  ASSERT_EQ(serial.nonZeros(), parallel.nonZeros());
+  EXPECT_TRUE(std::equal(serial.valuePtr(), serial.valuePtr() + serial.nonZeros(), parallel.valuePtr()));
+  EXPECT_TRUE(std::equal(serial.innerIndexPtr(), serial.innerIndexPtr() + serial.nonZeros(), parallel.innerIndexPtr()));
+  const Eigen::VectorXd shift = Field(mesh, [](const Eigen::Vector3d&) { return Eigen::Vector3d(0.3, -1.0, 2.0); });
+  EXPECT_LT((parallel * shift).norm(), 1e-9);
+  const double e = 0.01;
+  const Eigen::VectorXd stretch = Field(mesh, [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(e * x[0], 0, 0); });
+  const double lambda = material.YoungModulus * material.PoissonRatio /
+    ((1 + material.PoissonRatio) * (1 - 2 * material.PoissonRatio));
+  const double mu = material.YoungModulus / (2 * (1 + material.PoissonRatio));
+  EXPECT_NEAR(0.5 * stretch.dot(parallel * stretch), 0.5 * e * e * (lambda + 2 * mu) * n * n * n, 1e-9);
 }
 
 TEST(LinearElasticity, StopsWhenAsked)

@@ -108,3 +108,18 @@ TEST(MeshFaces, ATetOverlappingAnotherMakesAFaceOfThree)
   EXPECT_EQ(shared->TetCount, 3);
   EXPECT_EQ(faces.size(), 10u);
 }
+
+TEST(MeshFaces, VisitingGivesTheListInItsOrder)
+{
+  const cbc3d::TetMesh mesh = Block(4);
+  const auto faces = cbc3d::FindMeshFaces(mesh, 2);
+  std::size_t next = 0;
+  cbc3d::VisitMeshFaces(mesh.Tets, mesh.Points.size(), 2, [&](const cbc3d::MeshFace& face) {
+    ASSERT_LT(next, faces.size());
+    EXPECT_EQ(face.Points, faces[next].Points);
+    EXPECT_EQ(face.Tets, faces[next].Tets);
+    EXPECT_EQ(face.TetCount, faces[next].TetCount);
+    ++next;
+  });
+  EXPECT_EQ(next, faces.size());
+}
