@@ -87,13 +87,12 @@ bool RedGreenMesh::MayHaveChanged(std::size_t red) const
 
 PointId RedGreenMesh::FindMidpoint(PointId a, PointId b) const
 {
-  const auto found = this->Midpoints.find(EdgeKey(a, b));
-  return found == this->Midpoints.end() ? -1 : found->second;
+  return this->Midpoints.Find(EdgeKey(a, b));
 }
 
 PointId RedGreenMesh::Midpoint(PointId a, PointId b)
 {
-  const auto inserted = this->Midpoints.emplace(EdgeKey(a, b), PointId(this->PointList.size()));
+  const auto inserted = this->Midpoints.Insert(EdgeKey(a, b), PointId(this->PointList.size()));
   if (inserted.second)
   {
     this->PointList.push_back(0.5 * (this->PointList[a] + this->PointList[b]));
@@ -103,7 +102,7 @@ PointId RedGreenMesh::Midpoint(PointId a, PointId b)
     this->Touch(a);
     this->Touch(b);
   }
-  return inserted.first->second;
+  return inserted.first;
 }
 
 std::uint8_t RedGreenMesh::SplitMask(const Tet& tet) const

@@ -1,6 +1,7 @@
 #ifndef cbc3d_RedGreenMesh_h
 #define cbc3d_RedGreenMesh_h
 
+#include "cbc3d/EdgeMidpoints.h"
 #include "cbc3d/TetMesh.h"
 
 #include <Eigen/Core>
@@ -8,7 +9,6 @@
 #include <array>
 #include <cstdint>
 #include <functional>
-#include <unordered_map>
 #include <vector>
 
 namespace cbc3d
@@ -73,7 +73,7 @@ private:
 
   std::vector<Eigen::Vector3d> PointList;
   std::vector<RedTet> RedList;
-  std::unordered_map<std::uint64_t, PointId> Midpoints; // key: the edge's two point ids
+  EdgeMidpoints Midpoints;
   // Closure bookkeeping: a clock that ticks with every new midpoint, the tick at which each
   // point was last touched by one, each red's tick when it was last found closed (0: never),
   // and each point's parent edge (-1 for the roots' points).

@@ -1,5 +1,6 @@
 #include "TestMeshes.h"
 
+#include "cbc3d/EdgeMidpoints.h"
 #include "cbc3d/MeshFaces.h"
 #include "cbc3d/RedGreenMesh.h"
 #include "cbc3d/RedGreenTables.h"
@@ -323,4 +324,26 @@ TEST(RedGreenMesh, RepeatedRandomSplitsAndClosuresKeepTheMeshConforming)
     }
     EXPECT_NEAR(boundaryArea, 6.0 * n * n, 1e-9) << "round " << round;
   }
+}
+
+TEST(EdgeMidpoints, FindsWhatWasStoredThroughGrowthAndNothingElse)
+{
+  cbc3d::EdgeMidpoints table;
+  std::mt19937_64 random(3);
+  std::map<std::uint64_t, cbc3d::PointId> expected;
+  for (cbc3d::PointId point = 0; point < 50000; ++point)
+  {
+    const std::uint64_t a = random() % 100000, b = a + 1 + random() % 1000;
+    const std::uint64_t key = (a << 32) | b;
+    const auto [stored, inserted] = table.Insert(key, point);
+    const auto [it, fresh] = expected.emplace(key, point);
+    EXPECT_EQ(inserted, fresh);
+    EXPECT_EQ(stored, it->second);
+  }
+  EXPECT_EQ(table.Size(), expected.size());
+  for (const auto& [key, point] : expected)
+  {
+    ASSERT_EQ(table.Find(key), point);
+  }
+  EXPECT_EQ(table.Find((std::uint64_t{ 200000 } << 32) | 200001), -1);
 }
