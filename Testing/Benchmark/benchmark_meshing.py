@@ -24,7 +24,7 @@ where ../shared/data is missing.
 
     python3 Testing/Benchmark/benchmark_meshing.py [BUILD_DIR] [--iterations N] [--json FILE]
         [--no-cgal] [--cgal-runs N] [--images NAME ...] [--no-scaling | --scaling-only]
-        [--scaling-factors 1,2,4] [--scaling-threads 1,2]
+        [--scaling-factors 1,2,4] [--scaling-threads 1,2] [--no-targets]
 """
 import argparse
 import array
@@ -37,6 +37,8 @@ import subprocess
 import sys
 import tempfile
 import time
+
+import speed_targets
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -68,6 +70,8 @@ def parse_arguments():
     parts.add_argument("--scaling-only", action="store_true", help="only the scaling runs")
     parser.add_argument("--scaling-factors", default="1,2,4", help="upsampling factors per axis (default 1,2,4)")
     parser.add_argument("--scaling-threads", help="thread counts (default 1,2 and all cores where there are more)")
+    parser.add_argument("--no-targets", action="store_true",
+                        help="skip the speed targets' runs (threads, padding, a coarse lattice)")
     options = parser.parse_args()
     if os.path.basename(options.build) == "cbc3d":  # a path to the binary also works
         options.build = os.path.dirname(os.path.dirname(options.build))
@@ -502,6 +506,10 @@ def main():
     if not options.no_scaling:
         figures["scaling"] = run_scaling(options, cli)
         print_scaling(figures["scaling"])
+    if not options.scaling_only and not options.no_targets:
+        figures["targets"] = speed_targets.measure(cli, SHARED, PAPER_SETTINGS, figures["images"],
+                                                   figures.get("scaling"), read_nifti_header, open_nifti, progress)
+        speed_targets.print_targets(figures["targets"], print_table)
     with open(options.json, "w") as out:
         json.dump(figures, out, indent=2)
     print("figures written to %s" % options.json)
