@@ -2,6 +2,7 @@
 
 #include "cbc3d/DisjointSets.h"
 #include "cbc3d/MeshFaces.h"
+#include "cbc3d/Parallel.h"
 #include "cbc3d/PointTets.h"
 
 #include <Eigen/Geometry>
@@ -116,13 +117,16 @@ public:
       ++this->TetsOfClass[cls];
   }
 
-  void Load(PointId v, Star& star);
+  void Load(PointId v, Star& star) { this->Load(v, star, this->LocalOf); }
+  /// The same with the caller's tet -> node scratch (all -1, and left so): for other threads.
+  void Load(PointId v, Star& star, std::vector<int>& localOf) const;
   int CoveredPieces(PointId v, const Star& star) const;
   void LinkOutside(PointId v, Star& star, const std::vector<OutsideFace>& outside) const;
   void LinkAroundEdge(PointId v, PointId w, Star& star, const std::vector<OutsideFace>& outside,
     std::vector<int>& ends) const;
-  bool FindViolation(const Star& star, Violation& found);
+  bool FindViolation(const Star& star, Violation& found) const;
   bool IsUniform(PointId v) const;
+  std::size_t TetCount() const { return this->TetList.size(); }
   void RepairStar(PointId v, int visit, std::vector<std::int64_t>& changed, ManifoldRepairResult& result);
 
 private:
@@ -189,7 +193,7 @@ bool Repairer::IsUniform(PointId v) const
   return true;
 }
 
-void Repairer::Load(PointId v, Star& star)
+void Repairer::Load(PointId v, Star& star, std::vector<int>& localOf) const
 {
   const std::int64_t first = this->Stars.Start[v], last = this->Stars.Start[v + 1];
   star.Tets.assign(this->Stars.Tets.begin() + first, this->Stars.Tets.begin() + last);
@@ -202,7 +206,7 @@ void Repairer::Load(PointId v, Star& star)
   star.Class.resize(n);
   for (int i = 0; i < n; ++i)
   {
-    this->LocalOf[star.Tets[i]] = i;
+    localOf[star.Tets[i]] = i;
     star.Class[i] = this->Classes[star.Tets[i]];
   }
   std::vector<OutsideFace> outside;
@@ -218,7 +222,7 @@ void Repairer::Load(PointId v, Star& star)
       const std::int64_t neighbour = this->Across[star.Tets[i]][j];
       if (neighbour >= 0)
       {
-        star.Links[i].push_back(this->LocalOf[neighbour]);
+        star.Links[i].push_back(localOf[neighbour]);
         continue;
       }
       OutsideFace face{ star.Nodes(), i, { -1, -1 } };
@@ -242,7 +246,7 @@ void Repairer::Load(PointId v, Star& star)
   }
   for (const std::int64_t t : star.Tets)
   {
-    this->LocalOf[t] = -1;
+    localOf[t] = -1;
   }
 }
 
@@ -338,7 +342,7 @@ void Repairer::LinkAroundEdge(PointId v, PointId w, Star& star,
   }
 }
 
-bool Repairer::FindViolation(const Star& star, Violation& found)
+bool Repairer::FindViolation(const Star& star, Violation& found) const
 {
   // Where no tissue is, the mesh has nothing (the gaps of the lattice may pinch there).
   if (std::all_of(star.Class.begin(), star.Class.end(), [&](std::int32_t c) { return c == this->Background; }))
@@ -638,12 +642,38 @@ void Repairer::RepairStar(PointId v, int visit, std::vector<std::int64_t>& chang
   }
   this->Unify(star, visit >= VisitsBeforeRankedFallback, changed);
 }
+
+// Per vertex, whether every class is already manifold there: the first sweep's answers, found
+// in parallel (each thread with its own star and scratch) before any label changes.
+std::vector<char> ManifoldVertices(const Repairer& repairer, std::size_t pointCount, int threads)
+{
+  std::vector<char> manifold(pointCount, 0);
+  const std::int64_t count = static_cast<std::int64_t>(pointCount);
+#pragma omp parallel num_threads(threads)
+  {
+    Star star;
+    std::vector<int> localOf(repairer.TetCount(), -1);
+    Violation violation;
+#pragma omp for schedule(dynamic, 1024)
+    for (std::int64_t p = 0; p < count; ++p)
+    {
+      if (repairer.IsUniform(p))
+      {
+        manifold[p] = 1;
+        continue;
+      }
+      repairer.Load(p, star, localOf);
+      manifold[p] = !repairer.FindViolation(star, violation);
+    }
+  }
+  return manifold;
+}
 } // namespace
 
 ManifoldRepairResult RepairManifoldLabels(const std::vector<Eigen::Vector3d>& points,
   const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
   std::int32_t background, const ClassVotes& votes, std::vector<std::int32_t>& classes,
-  const std::vector<PointId>& seeds)
+  const std::vector<PointId>& seeds, int numberOfThreads)
 {
   ManifoldRepairResult result;
   const std::size_t pointCount = points.size();
@@ -658,9 +688,15 @@ ManifoldRepairResult RepairManifoldLabels(const std::vector<Eigen::Vector3d>& po
       queue.push_back(p);
     }
   };
+  // A first sweep over every vertex skips those found manifold beforehand and untouched since:
+  // looking again would find nothing to repair, so the result is the serial sweep's.
+  std::vector<char> known;
   if (seeds.empty())
+  {
+    known = ManifoldVertices(repairer, pointCount, ThreadCount(numberOfThreads));
     for (std::size_t p = 0; p < pointCount; ++p)
       push(static_cast<PointId>(p));
+  }
   for (const PointId p : seeds)
     push(p);
   // Every repair changes at least one tet; the bound keeps a pathological cycle finite.
@@ -671,7 +707,7 @@ ManifoldRepairResult RepairManifoldLabels(const std::vector<Eigen::Vector3d>& po
     const PointId v = queue.front();
     queue.pop_front();
     queued[v] = 0;
-    if (repairer.IsUniform(v))
+    if ((!known.empty() && known[v]) || repairer.IsUniform(v))
     {
       continue;
     }
@@ -685,7 +721,11 @@ ManifoldRepairResult RepairManifoldLabels(const std::vector<Eigen::Vector3d>& po
     result.Relabelled += static_cast<std::int64_t>(changed.size());
     for (const std::int64_t t : changed)
       for (const PointId p : tets[t])
+      {
         push(p);
+        if (!known.empty())
+          known[p] = 0; // its star changed
+      }
   }
   // Each vertex left the queue manifold, and went back on it whenever its star changed.
   if (!queue.empty())

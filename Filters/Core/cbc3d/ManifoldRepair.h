@@ -36,11 +36,12 @@ struct ManifoldRepairResult
 /// thickened into the smaller hole of the ring. A vertex that keeps failing gets its whole star
 /// in the class with the most votes there. Only vertices next to a change are looked at again,
 /// so the work follows the defects, not the mesh. `seeds`, when not empty, are the only
-/// vertices examined at first. Deterministic.
+/// vertices examined at first; without them, every vertex is first checked in parallel on
+/// `numberOfThreads` threads (0 = all cores). Deterministic: the same for any thread count.
 ManifoldRepairResult RepairManifoldLabels(const std::vector<Eigen::Vector3d>& points,
   const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
   std::int32_t background, const ClassVotes& votes, std::vector<std::int32_t>& classes,
-  const std::vector<PointId>& seeds = {});
+  const std::vector<PointId>& seeds = {}, int numberOfThreads = 1);
 
 /// The vertices where some class is not manifold (the condition RepairManifoldLabels makes).
 std::int64_t CountNonManifoldVertices(const std::vector<Eigen::Vector3d>& points,

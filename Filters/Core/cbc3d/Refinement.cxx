@@ -356,7 +356,7 @@ std::map<std::int32_t, TissueFidelity> KeepComponentsAndMakeSound(const LabelIma
     {
       relabelled += MakeLabelsSound(image, components, params.MinimumComponentVoxels,
         points, mesh.Tets, across, mesh.Counts, mesh.VoxelOwner, pinned, NoLabel,
-        mesh.Labels).Relabelled;
+        mesh.Labels, params.NumberOfThreads).Relabelled;
       fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
       const std::size_t before = pinned.size();
       const auto lost = PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);

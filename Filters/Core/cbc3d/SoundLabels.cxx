@@ -52,7 +52,7 @@ SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponent
   const std::vector<std::array<std::int64_t, 4>>& across,
   const std::vector<LabelCounts>& counts, const std::vector<std::int32_t>& voxelOwner,
   const std::map<std::int64_t, std::int32_t>& pinned, std::int32_t background,
-  std::vector<std::int32_t>& labels)
+  std::vector<std::int32_t>& labels, int numberOfThreads)
 {
   std::vector<std::int32_t> classes(labels.size());
   for (std::size_t t = 0; t < labels.size(); ++t)
@@ -64,7 +64,8 @@ SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponent
     return bonus + (cls == background ? counts[t].Total() - counts[t].TissueTotal(image) : counts[t].Of(cls));
   };
   SoundLabelsResult result;
-  ManifoldRepairResult repair = RepairManifoldLabels(points, tets, across, background, votes, classes);
+  ManifoldRepairResult repair =
+    RepairManifoldLabels(points, tets, across, background, votes, classes, {}, numberOfThreads);
   result.Repairs += repair.Repairs;
   const ImageRegions regions = KeptRegions(image, components, minimumVoxels, background,
     HasEnclosedBackground(tets, across, background, classes));
@@ -79,7 +80,7 @@ SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponent
     }
     repair = RepairManifoldLabels(points, tets, across, background, votes, classes, VerticesOf(tets, changed));
     result.Repairs += repair.Repairs;
-    }
+  }
   result.Unrepaired = repair.Unrepaired;
   for (std::size_t t = 0; t < labels.size(); ++t)
   {

@@ -37,7 +37,7 @@ SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponent
   const std::vector<std::array<std::int64_t, 4>>& across,
   const std::vector<LabelCounts>& counts, const std::vector<std::int32_t>& voxelOwner,
   const std::map<std::int64_t, std::int32_t>& pinned, std::int32_t background,
-  std::vector<std::int32_t>& labels);
+  std::vector<std::int32_t>& labels, int numberOfThreads = 1);
 } // namespace cbc3d
 
 #endif

@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <random>
 
 namespace
 {
@@ -41,7 +42,8 @@ cbc3d::TetMesh TissueOnly(const cbc3d::TetMesh& mesh, const std::vector<std::int
 }
 
 // `present` tells which cubes are in the mesh at all (a lattice may leave some out).
-Repaired Repair(int n, const Pattern& pattern, const std::function<bool(int, int, int)>& present = nullptr)
+Repaired Repair(int n, const Pattern& pattern, const std::function<bool(int, int, int)>& present = nullptr,
+  int threads = 1)
 {
   Repaired r;
   std::vector<std::int32_t> cubeLabel;
@@ -58,7 +60,8 @@ Repaired Repair(int n, const Pattern& pattern, const std::function<bool(int, int
     return std::int64_t(cubeLabel[t / 6] == cls ? 6 : 0);
   };
   r.NonManifoldBefore = cbc3d::CountNonManifoldVertices(r.Before.Points, r.Before.Tets, across, Background, r.Classes);
-  r.Result = cbc3d::RepairManifoldLabels(r.Before.Points, r.Before.Tets, across, Background, votes, r.Classes);
+  r.Result =
+    cbc3d::RepairManifoldLabels(r.Before.Points, r.Before.Tets, across, Background, votes, r.Classes, {}, threads);
   r.NonManifoldAfter = cbc3d::CountNonManifoldVertices(r.Before.Points, r.Before.Tets, across, Background, r.Classes);
   return r;
 }
@@ -146,4 +149,36 @@ TEST(ManifoldRepair, AMeshThatPinchesItselfKeepsOneSideOfThePinch)
   ExpectSound(r);
   const cbc3d::MeshTopology after = cbc3d::MeasureMeshTopology(TissueOnly(r.Before, r.Classes));
   EXPECT_GE(after.Whole.FaceComponents, 1);
+}
+
+TEST(ManifoldRepair, ANoisyPatternIsRepairedTheSameWithAnyThreads)
+{
+  // Three labels and background at random: thousands of defects; the first sweep checks the
+  // vertices in parallel, and the repairs must not depend on it.
+  std::mt19937 random(11);
+  std::vector<std::int32_t> noise(14 * 14 * 14);
+  for (auto& label : noise)
+    label = static_cast<std::int32_t>(random() % 4);
+  const Pattern pattern = [&](int x, int y, int z) { return noise[x + 14 * (y + 14 * z)]; };
+  const Repaired serial = Repair(14, pattern, nullptr, 1);
+  ASSERT_GT(serial.NonManifoldBefore, 100);
+  ExpectSound(serial);
+  // Every vertex as a seed: the plain serial sweep, without the checks made beforehand.
+  std::vector<std::int32_t> plain = serial.Before.Labels;
+  std::vector<cbc3d::PointId> every(serial.Before.Points.size());
+  for (std::size_t p = 0; p < every.size(); ++p)
+    every[p] = static_cast<cbc3d::PointId>(p);
+  const auto across = cbc3d::FaceNeighbours(serial.Before.Tets, serial.Before.Points.size());
+  const cbc3d::ClassVotes votes = [&](std::int64_t t, std::int32_t cls) {
+    return std::int64_t(serial.Before.Labels[t] == cls ? 6 : 0);
+  };
+  cbc3d::RepairManifoldLabels(serial.Before.Points, serial.Before.Tets, across, Background, votes, plain, every);
+  EXPECT_EQ(plain, serial.Classes);
+  for (const int threads : { 2, 4 })
+  {
+    const Repaired parallel = Repair(14, pattern, nullptr, threads);
+    EXPECT_EQ(parallel.Classes, serial.Classes) << threads << " threads";
+    EXPECT_EQ(parallel.Result.Repairs, serial.Result.Repairs) << threads << " threads";
+    EXPECT_EQ(parallel.Result.Relabelled, serial.Result.Relabelled) << threads << " threads";
+  }
 }
