@@ -422,8 +422,9 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   {
     return Status::Aborted();
   }
-  // The tets and labels stay as they are: one face list serves every stage below.
-  const std::vector<MeshFace> faces = FindMeshFaces(mesh, threads);
+  // The tets and labels stay as they are: one list of the surfaces' faces serves every stage
+  // below (each looks at those alone).
+  const std::vector<MeshFace> faces = SurfaceFaces(mesh, threads);
   const SurfaceSources sources = FindSurfaceSources(mesh, faces);
   if (stops.Stopped(0.02))
   {

@@ -23,7 +23,7 @@ class FidelityGuard
 public:
   /// Measures every tissue's distance, asking `keepGoing` before each; when it says stop, the
   /// guard is left unfinished.
-  /// `faces` are the mesh's (FindMeshFaces).
+  /// `faces` are the mesh's (FindMeshFaces, or SurfaceFaces: faces inside a tissue are ignored).
   FidelityGuard(const LabelImage& image, const TetMesh& mesh, const std::vector<MeshFace>& faces, double cell,
     int threads, const std::function<bool()>& keepGoing);
 

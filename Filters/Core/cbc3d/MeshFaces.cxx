@@ -185,6 +185,18 @@ void VisitMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int nu
   }
 }
 
+std::vector<MeshFace> SurfaceFaces(const TetMesh& mesh, int numberOfThreads)
+{
+  std::vector<MeshFace> faces;
+  VisitMeshFaces(mesh.Tets, mesh.Points.size(), numberOfThreads, [&](const MeshFace& face) {
+    if (face.TetCount != 2 || mesh.Labels[face.Tets[0]] != mesh.Labels[face.Tets[1]])
+    {
+      faces.push_back(face);
+    }
+  });
+  return faces;
+}
+
 std::vector<std::array<std::int64_t, 4>> FaceNeighbours(
   const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads)
 {

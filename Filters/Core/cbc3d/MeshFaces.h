@@ -28,6 +28,11 @@ std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t po
 void VisitMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads,
   const std::function<void(const MeshFace&)>& visit);
 
+/// The faces of a labelled mesh that bound a label: on the mesh boundary, between two labels,
+/// or (a mesh that does not conform) shared by more than two tets; in FindMeshFaces' order.
+/// Most faces are inside a tissue: those who want the surfaces alone need not hold them.
+std::vector<MeshFace> SurfaceFaces(const TetMesh& mesh, int numberOfThreads = 1);
+
 /// The tets across each tet's faces in a conforming mesh: Across[t][i] is the tet sharing the
 /// face opposite local vertex i of tet t, or -1 on the mesh boundary.
 std::vector<std::array<std::int64_t, 4>> FaceNeighbours(

@@ -19,7 +19,8 @@ namespace cbc3d
 /// faces that belong to exactly one tet of the tissue (outer boundary and interfaces alike; the
 /// mesh must conform). Ids are ascending.
 std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(const TetMesh& mesh);
-/// The same from the mesh's faces (FindMeshFaces), when the caller has them already.
+/// The same from the mesh's faces (FindMeshFaces, or SurfaceFaces: faces inside a tissue are
+/// ignored), when the caller has them already.
 std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(
   const TetMesh& mesh, const std::vector<MeshFace>& faces);
 

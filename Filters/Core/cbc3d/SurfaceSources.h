@@ -20,7 +20,8 @@ struct SurfaceSources
 /// The mesh's surface and interface vertices, each with the labels of its tets (plus
 /// OutsideLabel on the outer surface), and every vertex's element size.
 SurfaceSources FindSurfaceSources(const TetMesh& mesh);
-/// The same from the mesh's faces (FindMeshFaces), when the caller has them already.
+/// The same from the mesh's faces (FindMeshFaces, or SurfaceFaces: faces inside a tissue are
+/// ignored), when the caller has them already.
 SurfaceSources FindSurfaceSources(const TetMesh& mesh, const std::vector<MeshFace>& faces);
 } // namespace cbc3d
 

@@ -70,7 +70,8 @@ Status RequireInt32Tissues(const TaggedMesh& mesh, const std::string& format, co
 /// have more than two tets. The labels are codes of `codes` (LabelCodes.h), which names use.
 Status BuildTaggedMesh(
   const TetMesh& mesh, std::int32_t outside, TaggedMesh& out, const LabelCodes& codes = LabelCodes());
-/// The same from the mesh's faces (FindMeshFaces), when the caller has them already.
+/// The same from the mesh's faces (FindMeshFaces, or SurfaceFaces: faces inside a tissue are
+/// ignored), when the caller has them already.
 Status BuildTaggedMesh(const TetMesh& mesh, const std::vector<MeshFace>& faces, std::int32_t outside,
   TaggedMesh& out, const LabelCodes& codes = LabelCodes());
 

@@ -29,7 +29,8 @@ public:
   /// `targets`: the volume each tissue label should have (mm^3); tissues without one are free.
   /// `largestOffset`: no interface moves farther than this in one call (mm).
   TissueVolumeKeeper(const TetMesh& mesh, std::map<std::int32_t, double> targets, double largestOffset);
-  /// The same from the mesh's faces (FindMeshFaces), when the caller has them already.
+  /// The same from the mesh's faces (FindMeshFaces, or SurfaceFaces: faces inside a tissue are
+/// ignored), when the caller has them already.
   TissueVolumeKeeper(const TetMesh& mesh, const std::vector<MeshFace>& faces, std::map<std::int32_t, double> targets,
     double largestOffset);
 
