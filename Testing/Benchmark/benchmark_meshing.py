@@ -39,6 +39,7 @@ import argparse
 import array
 import gzip
 import json
+import math
 import os
 import resource
 import struct
@@ -109,6 +110,9 @@ def add_curve_arguments(parser, parts):
                         help="skip CGAL's default (time-limited) run at each factor")
     parser.add_argument("--plots", default=os.path.join(ROOT, "Documentation", "images"),
                         help="folder of the PNGs (default Documentation/images)")
+    parser.add_argument("--curves-from", metavar="JSON",
+                        help="run nothing: print the table and draw the plots of an earlier --curves run's "
+                        "JSON (its images, or those of --images)")
 
 
 def positive_numbers(parser, name, text):
@@ -629,14 +633,41 @@ def draw_series(axis, points, key, style, label, tags, **line):
     if not done:
         return
     axis.plot([p["tetrahedra"] for p in done], [p[key] for p in done], style, label=label, **line)
-    for p in done if tags else ():
-        axis.annotate(tags(p), (p["tetrahedra"], p[key]), textcoords="offset points", xytext=(3, 3), fontsize=7)
+    for (x, y), text in (merged_tags(done, key, tags) if tags else []):
+        axis.annotate(text, (x, y), textcoords="offset points", xytext=(3, 3), fontsize=7)
+
+
+def merged_tags(points, key, tags):
+    """One tag per spot: points within 5% of each other in tets and value (the nidus meshes the
+    same at 4, 8 and 16 mm) share a tag "4/8/16" instead of overprinting it."""
+    spots = []
+    for p in points:
+        x, y = p["tetrahedra"], p[key]
+        near = next((s for s in spots if abs(x / s[0][0] - 1) < 0.05 and abs(y / s[0][1] - 1) < 0.05), None)
+        if near:
+            near[1].append(tags(p))
+        else:
+            spots.append(((x, y), [tags(p)]))
+    return [(spot, "/".join(texts)) for spot, texts in spots]
+
+
+def plain_log_ticks(ticks, low, high):
+    """Plain numbers on a log axis (20, not 2 x 10^1); the 2 and 5 between powers of ten are
+    labelled too where the axis spans under two decades, so that it has more than one label."""
+    from matplotlib.ticker import FuncFormatter, NullFormatter
+    ticks.set_major_formatter(FuncFormatter(lambda value, _: "%g" % value))
+    if high / low >= 100:
+        ticks.set_minor_formatter(NullFormatter())
+        return
+    def minor(value, _):
+        mantissa = value / 10 ** math.floor(math.log10(value) + 1e-9)
+        return "%g" % value if round(mantissa) in (2, 5) and abs(mantissa - round(mantissa)) < 1e-6 else ""
+    ticks.set_minor_formatter(FuncFormatter(minor))
 
 
 def plot_curves(pyplot, name, entry, folder):
     """One PNG per image: HD (max solid, 95th percentile dashed) and seconds against tets, log
     axes. cbc3d's points are tagged with the lattice size, CGAL's with the factor."""
-    from matplotlib.ticker import FuncFormatter, LogFormatter
     figure, (hd, seconds) = pyplot.subplots(1, 2, figsize=(10, 4))
     ours = sorted(entry["cbc3d"], key=lambda p: -p["bcc_size_mm"])
     theirs = sorted(entry.get("cgal", []), key=lambda p: -p["factor"])
@@ -652,16 +683,16 @@ def plot_curves(pyplot, name, entry, folder):
     draw_series(seconds, cgal_default, "seconds", "s:C1", "CGAL default (make_mesh_3)", None, mfc="none")
     hd.set_title("Hausdorff distance: max (solid), 95th percentile (dashed)", fontsize=9)
     seconds.set_title("seconds (lower is faster)", fontsize=9)
-    for axis, what in ((hd, "Hausdorff distance (mm)"), (seconds, "seconds")):
+    # Legends where the curves cannot be: few tets with a small HD, few tets taking long.
+    for axis, what, corner in ((hd, "Hausdorff distance (mm)", "lower left"), (seconds, "seconds", "upper left")):
         axis.set_xscale("log")
         axis.set_yscale("log")
-        for ticks in (axis.xaxis, axis.yaxis):  # plain numbers (20, not 2 x 10^1); each axis its own
-            ticks.set_major_formatter(FuncFormatter(lambda value, _: "%g" % value))
-            ticks.set_minor_formatter(LogFormatter(labelOnlyBase=False, minor_thresholds=(2, 0.5)))
+        plain_log_ticks(axis.xaxis, *axis.get_xlim())
+        plain_log_ticks(axis.yaxis, *axis.get_ylim())
         axis.set_xlabel("tetrahedra")
         axis.set_ylabel(what)
         axis.grid(True, which="both", alpha=0.3)
-        axis.legend(fontsize=7)
+        axis.legend(fontsize=7, loc=corner)
     figure.suptitle(name)
     figure.tight_layout()
     os.makedirs(folder, exist_ok=True)
@@ -669,6 +700,19 @@ def plot_curves(pyplot, name, entry, folder):
     figure.savefig(target, dpi=100)
     pyplot.close(figure)
     return target
+
+
+def redraw_curves(options, images):
+    """The table and plots of an earlier run, for the images asked."""
+    with open(options.curves_from) as source:
+        figures = json.load(source)
+    names = [name for name, _ in images]
+    figures["curves"] = {name: entry for name, entry in figures["curves"].items() if name in names}
+    pyplot = import_pyplot() if options.plots else None
+    for name, entry in figures["curves"].items() if pyplot else ():
+        progress("plot %s" % plot_curves(pyplot, name, entry, options.plots))
+    print_curves(figures)
+    return 0
 
 
 def print_curves(figures):
@@ -702,6 +746,13 @@ def curve_row(name, mesher, size, p):
 
 def main():
     options = parse_arguments()
+    images = [(name, background) for name, background in IMAGES
+              if not options.images or any(part in name for part in options.images)]
+    if not images:
+        print("no image of %s matches %s" % (", ".join(name for name, _ in IMAGES), " ".join(options.images)))
+        return 1
+    if options.curves_from:  # needs neither the images nor a build
+        return redraw_curves(options, images)
     if not os.path.isdir(SHARED):
         print("skipped: no ../shared/data beside the checkout")
         return 0
@@ -712,11 +763,6 @@ def main():
     cgal = os.path.join(options.build, "bin", "CBC3DCGALMesh3")
     if options.no_cgal or not os.path.exists(cgal):
         cgal = None
-    images = [(name, background) for name, background in IMAGES
-              if not options.images or any(part in name for part in options.images)]
-    if not images:
-        print("no image of %s matches %s" % (", ".join(name for name, _ in IMAGES), " ".join(options.images)))
-        return 1
     figures = {"machine": {"cpus": os.cpu_count(), "memory_available_mb": (available_memory_bytes() or 0) / 2**20},
                "settings": {"cbc3d": " ".join(PAPER_SETTINGS + ["--iterations", options.iterations]),
                             "cgal": CGAL_SETTINGS if cgal else None}}
