@@ -651,17 +651,26 @@ def merged_tags(points, key, tags):
     return [(spot, "/".join(texts)) for spot, texts in spots]
 
 
+def plain_number(value):
+    """20 rather than 2 x 10^1; 100k and 1M rather than 1e+05 and 1e+06."""
+    if value >= 1e6:
+        return "%gM" % (value / 1e6)
+    return "%gk" % (value / 1e3) if value >= 1e4 else "%g" % value
+
+
 def plain_log_ticks(ticks, low, high):
-    """Plain numbers on a log axis (20, not 2 x 10^1); the 2 and 5 between powers of ten are
-    labelled too where the axis spans under two decades, so that it has more than one label."""
+    """Plain numbers on a log axis; between powers of ten, 2 and 5 are labelled where the axis spans
+    under two decades and 2 to 6 and 8 under one, so that a short axis has more than one label."""
     from matplotlib.ticker import FuncFormatter, NullFormatter
-    ticks.set_major_formatter(FuncFormatter(lambda value, _: "%g" % value))
+    ticks.set_major_formatter(FuncFormatter(lambda value, _: plain_number(value)))
     if high / low >= 100:
         ticks.set_minor_formatter(NullFormatter())
         return
+    labelled = (2, 3, 4, 5, 6, 8) if high / low < 10 else (2, 5)
     def minor(value, _):
         mantissa = value / 10 ** math.floor(math.log10(value) + 1e-9)
-        return "%g" % value if round(mantissa) in (2, 5) and abs(mantissa - round(mantissa)) < 1e-6 else ""
+        whole = round(mantissa)
+        return plain_number(value) if whole in labelled and abs(mantissa - whole) < 1e-6 else ""
     ticks.set_minor_formatter(FuncFormatter(minor))
 
 
