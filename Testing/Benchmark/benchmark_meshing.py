@@ -103,9 +103,9 @@ def add_curve_arguments(parser, parts):
     parser.add_argument("--curve-cgal-factors", default="0.5,0.75,1,1.5,2,3",
                         help="multiples of the paper's CGAL facet size, facet distance and cell size "
                         "(2, 2, 2.5 mm; default 0.5,0.75,1,1.5,2,3)")
-    parser.add_argument("--curve-cgal-limit", type=float, default=200.0, metavar="SECONDS",
+    parser.add_argument("--curve-cgal-limit", type=float, default=300.0, metavar="SECONDS",
                         help="skip a CGAL factor whose predicted no-time-limit run (the previous, coarser one's "
-                        "seconds times the cube of the size ratio) exceeds this (default 200; 0: no limit)")
+                        "seconds times the cube of the size ratio) exceeds this (default 300; 0: no limit)")
     parser.add_argument("--no-curve-cgal-default", action="store_true",
                         help="skip CGAL's default (time-limited) run at each factor")
     parser.add_argument("--plots", default=os.path.join(ROOT, "Documentation", "images"),
@@ -740,17 +740,17 @@ def print_curves(figures):
           "facet distance and cell size (%s), no time limits; seconds: cbc3d's whole run, CGAL's make_mesh_3. "
           "Whole curves run: %.0f s." % (figures["settings"]["cbc3d"], CGAL_SETTINGS, figures.get("wall_seconds", 0)))
     print()
-    print_table(["image", "mesher", "size", "tets", "HD max mm", "HD 95% mm", "seconds", "peak MB",
+    print_table(["image", "mesher", "size", "tets", "HD max mm", "HD 95% mm", "mean mm", "seconds", "peak MB",
                  "CGAL default s", "CGAL default tets"], rows)
 
 
 def curve_row(name, mesher, size, p):
     if "skipped" in p:
-        return [name, mesher, size, "skipped: " + p["skipped"]] + [""] * 4
+        return [name, mesher, size, "skipped: " + p["skipped"]] + [""] * 5
     if "error" in p:
-        return [name, mesher, size, "failed: " + p["error"]] + [""] * 4
+        return [name, mesher, size, "failed: " + p["error"]] + [""] * 5
     return [name, mesher, size, "%d" % p["tetrahedra"], "%.2f" % p["hausdorff_mm"], "%.2f" % p["hausdorff_95_mm"],
-            "%.2f" % p["seconds"], "%.0f" % p["peak_mb"]]
+            "%.2f" % p["mean_distance_mm"], "%.2f" % p["seconds"], "%.0f" % p["peak_mb"]]
 
 
 def main():
