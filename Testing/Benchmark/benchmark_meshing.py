@@ -32,8 +32,9 @@ where ../shared/data is missing.
         [--no-cgal] [--cgal-runs N] [--images NAME ...] [--no-scaling | --scaling-only]
         [--scaling-factors 1,2,4] [--scaling-threads 1,2]
     /usr/bin/python3 Testing/Benchmark/benchmark_meshing.py [BUILD_DIR] --curves [--curve-sizes 4,6,8,12,16]
-        [--curve-cgal-factors 0.5,0.75,1,1.5,2,3] [--curve-cgal-limit SECONDS] [--no-curve-cgal-default]
+        [--curve-cgal-factors 0.35,0.5,0.75,1,1.5,2,3] [--curve-cgal-limit SECONDS] [--no-curve-cgal-default]
         [--plots DIR] [--images NAME ...] [--no-cgal] [--json FILE]
+    /usr/bin/python3 Testing/Benchmark/benchmark_meshing.py --curves-from JSON [--plots DIR] [--images NAME ...]
 """
 import argparse
 import array
@@ -100,9 +101,9 @@ def add_curve_arguments(parser, parts):
     parts.add_argument("--curves", action="store_true",
                        help="size curves (HD and seconds against tets) instead of the tables")
     parser.add_argument("--curve-sizes", default="4,6,8,12,16", help="cbc3d lattice sizes in mm (default 4,6,8,12,16)")
-    parser.add_argument("--curve-cgal-factors", default="0.5,0.75,1,1.5,2,3",
+    parser.add_argument("--curve-cgal-factors", default="0.35,0.5,0.75,1,1.5,2,3",
                         help="multiples of the paper's CGAL facet size, facet distance and cell size "
-                        "(2, 2, 2.5 mm; default 0.5,0.75,1,1.5,2,3)")
+                        "(2, 2, 2.5 mm; default 0.35,0.5,0.75,1,1.5,2,3)")
     parser.add_argument("--curve-cgal-limit", type=float, default=300.0, metavar="SECONDS",
                         help="skip a CGAL factor whose predicted no-time-limit run (the previous, coarser one's "
                         "seconds times the cube of the size ratio) exceeds this (default 300; 0: no limit)")
