@@ -1,10 +1,14 @@
 // A peer for the benchmark, never part of the library or plugin: meshes a label image with
-// CGAL Mesh_3 (Labeled_mesh_domain_3, the CBC3D paper's CGAL settings), puts the mesh in the
-// image's world frame, and measures it with vtkCBC3DMeshQuality, the ruler cbc3d uses.
+// CGAL Mesh_3 (Labeled_mesh_domain_3, the CBC3D paper's CGAL settings by default), puts the mesh
+// in the image's world frame, and measures it with vtkCBC3DMeshQuality, the ruler cbc3d uses.
 //   CBC3DCGALMesh3 IMAGE.nii.gz OUT.vtu [--background L] [--deterministic]
+//                  [--facet-size MM] [--facet-distance MM] [--cell-size MM]
 // --deterministic turns off the time limits of CGAL's perturber and exuder, whose default
-// (the refinement's own time) makes the result depend on the machine's load. Prints a summary
-// line, then one JSON line for benchmark_meshing.py (the mesh's figures and each tissue's).
+// (the refinement's own time) makes the result depend on the machine's load. The three sizes
+// (defaults 2, 2 and 2.5 mm, the paper's) let benchmark_meshing.py --curves trace CGAL's
+// Hausdorff distance and time against its tet count; facet angle 30 and radius-edge ratio 1.5
+// are shape criteria and stay the paper's. Prints a summary line, then one JSON line for
+// benchmark_meshing.py (the mesh's figures, the sizes used, and each tissue's figures).
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DMeshQuality.h"
 #include "vtkCBC3DNIfTIReader.h"
@@ -31,9 +35,12 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -44,22 +51,94 @@ using Triangulation = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Se
 using Complex = CGAL::Mesh_complex_3_in_triangulation_3<Triangulation>;
 using Criteria = CGAL::Mesh_criteria_3<Triangulation>;
 
+namespace
+{
+const char* const Usage = "usage: CBC3DCGALMesh3 IMAGE.nii.gz OUT.vtu [--background L] [--deterministic] "
+                          "[--facet-size MM] [--facet-distance MM] [--cell-size MM]\n";
+
+struct Options
+{
+  int Background = 0;
+  bool Deterministic = false;
+  // The paper's CGAL size criteria, in mm.
+  double FacetSize = 2.0;
+  double FacetDistance = 2.0;
+  double CellSize = 2.5;
+};
+
+// A size criterion: a finite number of mm above 0 (CGAL reads 0 as "no bound", which
+// would silently mesh something else than asked).
+bool ParseSize(const char* text, double& size)
+{
+  char* end = nullptr;
+  const double value = std::strtod(text, &end);
+  if (end == text || *end != '\0' || !std::isfinite(value) || value <= 0)
+    return false;
+  size = value;
+  return true;
+}
+
+bool ParseLabel(const char* text, int& label)
+{
+  char* end = nullptr;
+  const long value = std::strtol(text, &end, 10);
+  if (end == text || *end != '\0' || value < std::numeric_limits<int>::min() ||
+    value > std::numeric_limits<int>::max())
+    return false;
+  label = static_cast<int>(value);
+  return true;
+}
+
+// Reads the options after IMAGE and OUT; on a bad one prints one line and returns false.
+bool ParseOptions(int argc, char* argv[], Options& options)
+{
+  for (int i = 3; i < argc; ++i)
+  {
+    const char* name = argv[i];
+    if (std::strcmp(name, "--deterministic") == 0)
+    {
+      options.Deterministic = true;
+      continue;
+    }
+    double* size = std::strcmp(name, "--facet-size") == 0 ? &options.FacetSize
+      : std::strcmp(name, "--facet-distance") == 0        ? &options.FacetDistance
+      : std::strcmp(name, "--cell-size") == 0             ? &options.CellSize
+                                                          : nullptr;
+    const bool background = std::strcmp(name, "--background") == 0;
+    if (!size && !background)
+    {
+      std::fprintf(stderr, "CBC3DCGALMesh3: unknown option %s\n", name);
+      return false;
+    }
+    if (i + 1 >= argc)
+    {
+      std::fprintf(stderr, "CBC3DCGALMesh3: %s needs a value\n", name);
+      return false;
+    }
+    const char* text = argv[++i];
+    if (background ? !ParseLabel(text, options.Background) : !ParseSize(text, *size))
+    {
+      std::fprintf(stderr, "CBC3DCGALMesh3: %s %s: expected %s\n", name, text,
+        background ? "an integer label" : "a size in mm above 0");
+      return false;
+    }
+  }
+  return true;
+}
+} // namespace
+
 int main(int argc, char* argv[])
 {
   if (argc < 3)
   {
-    std::fprintf(stderr, "usage: CBC3DCGALMesh3 IMAGE.nii.gz OUT.vtu [--background L] [--deterministic]\n");
+    std::fputs(Usage, stderr);
     return 2;
   }
-  int background = 0;
-  bool deterministic = false;
-  for (int i = 3; i < argc; ++i)
-  {
-    if (std::strcmp(argv[i], "--background") == 0 && i + 1 < argc)
-      background = std::atoi(argv[++i]);
-    else if (std::strcmp(argv[i], "--deterministic") == 0)
-      deterministic = true;
-  }
+  Options options;
+  if (!ParseOptions(argc, argv, options))
+    return 2;
+  const int background = options.Background;
+  const bool deterministic = options.Deterministic;
   vtkNew<vtkCBC3DNIfTIReader> reader;
   reader->SetFileName(argv[1]);
   reader->Update();
@@ -99,8 +178,8 @@ int main(int argc, char* argv[])
   CGAL::Image_3 cgalImage(raw);
   Domain domain = Domain::create_labeled_image_mesh_domain(cgalImage);
   namespace p = CGAL::parameters;
-  Criteria criteria(p::facet_angle = 30, p::facet_size = 2, p::facet_distance = 2,
-    p::cell_radius_edge_ratio = 1.5, p::cell_size = 2.5);
+  Criteria criteria(p::facet_angle = 30, p::facet_size = options.FacetSize, p::facet_distance = options.FacetDistance,
+    p::cell_radius_edge_ratio = 1.5, p::cell_size = options.CellSize);
   const auto start = std::chrono::steady_clock::now();
   Complex complex = deterministic
     ? CGAL::make_mesh_3<Complex>(domain, criteria, p::perturb(p::time_limit = 0), p::exude(p::time_limit = 0))
@@ -152,9 +231,10 @@ int main(int argc, char* argv[])
   quality->SetBackgroundLabel(background);
   quality->Update();
   vtkFieldData* f = quality->GetOutput()->GetFieldData();
-  std::printf("CGAL Mesh_3 (%s): %lld tets, %lld points, dihedral %.2f / %.2f deg, Hausdorff %.2f mm "
-              "(95%% %.2f, mean %.2f), %.1f s\n",
-    deterministic ? "no time limits" : "default time limits",
+  std::printf("CGAL Mesh_3 (%s; facet size %g, facet distance %g, cell size %g mm): %lld tets, %lld points, "
+              "dihedral %.2f / %.2f deg, Hausdorff %.2f mm (95%% %.2f, mean %.2f), %.1f s\n",
+    deterministic ? "no time limits" : "default time limits", options.FacetSize, options.FacetDistance,
+    options.CellSize,
     static_cast<long long>(mesh->GetNumberOfCells()), static_cast<long long>(mesh->GetNumberOfPoints()),
     f->GetArray("MinDihedralAngle")->GetTuple1(0), f->GetArray("MaxDihedralAngle")->GetTuple1(0),
     f->GetArray("HausdorffDistance")->GetTuple1(0), f->GetArray("HausdorffDistance95")->GetTuple1(0),
@@ -179,15 +259,16 @@ int main(int argc, char* argv[])
       static_cast<long long>(value((prefix + names::ImageSurfaceEuler).c_str(), i)));
     return std::string(keys);
   };
-  char text[1024];
+  char text[2048];
   std::snprintf(text, sizeof(text),
     "{\"tetrahedra\": %lld, \"points\": %lld, \"min_dihedral_deg\": %.6f, \"max_dihedral_deg\": %.6f, "
     "\"hausdorff_mm\": %.6f, \"hausdorff_95_mm\": %.6f, \"mean_distance_mm\": %.6f, \"seconds\": %.3f, "
+    "\"criteria\": {\"facet_size_mm\": %g, \"facet_distance_mm\": %g, \"cell_size_mm\": %g}, "
     "\"topology\": {%s, \"solver_ready\": %s}, \"tissues\": {",
     static_cast<long long>(mesh->GetNumberOfCells()), static_cast<long long>(mesh->GetNumberOfPoints()),
     value(names::MinDihedralAngle, 0), value(names::MaxDihedralAngle, 0), value(names::HausdorffDistance, 0),
-    value(names::HausdorffDistance95, 0), value(names::MeanSurfaceDistance, 0), seconds,
-    topology("", 0).c_str(), value(names::SolverReady, 0) != 0 ? "true" : "false");
+    value(names::HausdorffDistance95, 0), value(names::MeanSurfaceDistance, 0), seconds, options.FacetSize,
+    options.FacetDistance, options.CellSize, topology("", 0).c_str(), value(names::SolverReady, 0) != 0 ? "true" : "false");
   std::string json = text;
   const vtkIdType tissues = f->GetArray(names::TissueLabel) ? f->GetArray(names::TissueLabel)->GetNumberOfTuples() : 0;
   for (vtkIdType i = 0; i < tissues; ++i)

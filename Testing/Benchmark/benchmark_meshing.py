@@ -19,17 +19,28 @@ edge --iterations 5`; background 1 for the k-means head) and prints Markdown tab
   by cbc3d at 1 and 2 threads (and all cores where there are more): time and memory against
   image size and thread count.
 
+--curves replaces all of these by size curves: on each image, cbc3d at several lattice sizes
+and CGAL at several multiples of the paper's size criteria, each mesh's tets, Hausdorff distance
+(max and 95th percentile) and seconds, printed as a table, written as JSON and drawn with
+matplotlib (one PNG per image: HD against tets and seconds against tets). Only that mode imports
+matplotlib; without it the plots are skipped with a message.
+
 Writes every figure as JSON too. Asserts nothing: read the figures. Exits 0 with a message
 where ../shared/data is missing.
 
     python3 Testing/Benchmark/benchmark_meshing.py [BUILD_DIR] [--iterations N] [--json FILE]
         [--no-cgal] [--cgal-runs N] [--images NAME ...] [--no-scaling | --scaling-only]
         [--scaling-factors 1,2,4] [--scaling-threads 1,2] [--no-targets]
+    /usr/bin/python3 Testing/Benchmark/benchmark_meshing.py [BUILD_DIR] --curves [--curve-sizes 4,6,8,12,16]
+        [--curve-cgal-factors 0.35,0.5,0.75,1,1.5,2,3] [--curve-cgal-limit SECONDS] [--no-curve-cgal-default]
+        [--plots DIR] [--images NAME ...] [--no-cgal] [--json FILE]
+    /usr/bin/python3 Testing/Benchmark/benchmark_meshing.py --curves-from JSON [--plots DIR] [--images NAME ...]
 """
 import argparse
 import array
 import gzip
 import json
+import math
 import os
 import resource
 import struct
@@ -45,6 +56,8 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 SHARED = os.path.join(ROOT, "..", "shared", "data")
 PAPER_SETTINGS = ["--bcc-size", "8", "--fidelity", "0.95", "--pattern", "edge"]
 CGAL_SETTINGS = "facet angle 30, size 2, distance 2, radius-edge 1.5, cell size 2.5"
+# The paper's CGAL size criteria in mm, which --curves scales: facet size, facet distance, cell size.
+CGAL_SIZES = (2.0, 2.0, 2.5)
 STAGES = ("read", "lattice", "refinement", "deformation", "quality", "write")
 IMAGES = [("cbc3d-brain.nii.gz", 0), ("cbc3d-nidus.nii.gz", 0), ("cbc3d-ventricles.nii.gz", 0),
           ("nipype-tissue-labels.nii.gz", 0), ("itk-t1-kmeans-labels.nii.gz", 1)]
@@ -59,7 +72,8 @@ def parse_arguments():
     parser.add_argument("build", nargs="?", default=os.path.join(ROOT, "build"),
                         help="build folder, or the path of its bin/cbc3d (default: build)")
     parser.add_argument("--iterations", default="5", help="cbc3d deformation iterations (default 5, the paper's)")
-    parser.add_argument("--json", default="benchmark.json", help="where the figures go (default benchmark.json)")
+    parser.add_argument("--json", help="where the figures go (default benchmark.json; benchmark-curves.json "
+                        "with --curves)")
     parser.add_argument("--no-cgal", action="store_true", help="cbc3d alone")
     parser.add_argument("--cgal-runs", type=int, default=1,
                         help="CGAL default (time-limited) runs per image, to show their spread (default 1)")
@@ -72,13 +86,49 @@ def parse_arguments():
     parser.add_argument("--scaling-threads", help="thread counts (default 1,2 and all cores where there are more)")
     parser.add_argument("--no-targets", action="store_true",
                         help="skip the speed targets' runs (threads, padding, a coarse lattice)")
+    add_curve_arguments(parser, parts)
     options = parser.parse_args()
     if os.path.basename(options.build) == "cbc3d":  # a path to the binary also works
         options.build = os.path.dirname(os.path.dirname(options.build))
     options.factors = [int(f) for f in options.scaling_factors.split(",")]
+    options.curve_sizes = positive_numbers(parser, "--curve-sizes", options.curve_sizes)
+    options.curve_cgal_factors = positive_numbers(parser, "--curve-cgal-factors", options.curve_cgal_factors)
+    if options.json is None:
+        options.json = "benchmark-curves.json" if options.curves else "benchmark.json"
     options.threads = ([int(t) for t in options.scaling_threads.split(",")] if options.scaling_threads
                        else sorted({1, 2, os.cpu_count() or 1}))
     return options
+
+
+def add_curve_arguments(parser, parts):
+    """The --curves mode's options; --curves is one more choice beside --no-scaling and --scaling-only."""
+    parts.add_argument("--curves", action="store_true",
+                       help="size curves (HD and seconds against tets) instead of the tables")
+    parser.add_argument("--curve-sizes", default="4,6,8,12,16", help="cbc3d lattice sizes in mm (default 4,6,8,12,16)")
+    parser.add_argument("--curve-cgal-factors", default="0.35,0.5,0.75,1,1.5,2,3",
+                        help="multiples of the paper's CGAL facet size, facet distance and cell size "
+                        "(2, 2, 2.5 mm; default 0.35,0.5,0.75,1,1.5,2,3)")
+    parser.add_argument("--curve-cgal-limit", type=float, default=300.0, metavar="SECONDS",
+                        help="skip a CGAL factor whose predicted no-time-limit run (the previous, coarser one's "
+                        "seconds times the cube of the size ratio) exceeds this (default 300; 0: no limit)")
+    parser.add_argument("--no-curve-cgal-default", action="store_true",
+                        help="skip CGAL's default (time-limited) run at each factor")
+    parser.add_argument("--plots", default=os.path.join(ROOT, "Documentation", "images"),
+                        help="folder of the PNGs (default Documentation/images)")
+    parser.add_argument("--curves-from", metavar="JSON",
+                        help="run nothing: print the table and draw the plots of an earlier --curves run's "
+                        "JSON (its images, or those of --images)")
+
+
+def positive_numbers(parser, name, text):
+    """A comma-separated list of numbers above 0, or the parser's one-line error."""
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        values = []
+    if not values or any(not v > 0 or v == float("inf") for v in values):
+        parser.error("%s %s: expected numbers above 0, separated by commas" % (name, text))
+    return values
 
 
 def progress(text):
@@ -119,13 +169,14 @@ def failure(code, err):
     return ending + (": " + lines[-1].strip() if lines else "")
 
 
-def run_cbc3d(cli, image, background, iterations, work, threads=0, memory_limit=None, extra=()):
-    """cbc3d with the paper's settings: its --report figures plus peak_mb and wall_seconds, or
-    {"error": reason}."""
+def run_cbc3d(cli, image, background, iterations, work, threads=0, memory_limit=None, extra=(),
+              settings=PAPER_SETTINGS):
+    """cbc3d with the paper's settings (or settings): its --report figures plus peak_mb and
+    wall_seconds, or {"error": reason}."""
     report = os.path.join(work, "report.json")
     if os.path.exists(report):
         os.remove(report)
-    command = [cli, image, "-o", os.path.join(work, "mesh.vtu")] + PAPER_SETTINGS + [
+    command = [cli, image, "-o", os.path.join(work, "mesh.vtu")] + list(settings) + [
         "--iterations", iterations, "--background", str(background), "--threads", str(threads),
         "--quiet", "--report", report] + list(extra)
     code, _, err, seconds, peak = run_measured(command, memory_limit)
@@ -135,10 +186,11 @@ def run_cbc3d(cli, image, background, iterations, work, threads=0, memory_limit=
         return dict(json.load(r), peak_mb=peak, wall_seconds=seconds)
 
 
-def run_cgal(cgal, image, background, work, deterministic):
-    """The CGAL Mesh_3 peer: its JSON line (seconds = make_mesh_3 alone) plus peak_mb and
-    wall_seconds (reading, meshing, measuring, writing), or {"error": reason}."""
-    command = [cgal, image, os.path.join(work, "cgal.vtu"), "--background", str(background)]
+def run_cgal(cgal, image, background, work, deterministic, sizes=()):
+    """The CGAL Mesh_3 peer (the paper's criteria, or sizes: its size options): its JSON line
+    (seconds = make_mesh_3 alone) plus peak_mb and wall_seconds (reading, meshing, measuring,
+    writing), or {"error": reason}."""
+    command = [cgal, image, os.path.join(work, "cgal.vtu"), "--background", str(background)] + list(sizes)
     code, out, err, seconds, peak = run_measured(command + (["--deterministic"] if deterministic else []))
     lines = [line for line in out.splitlines() if line.startswith("{")]
     if code != 0 or not lines:
@@ -471,8 +523,250 @@ def print_table1(rows):
                  "cbc3d deformation s", "iterations done"], table)
 
 
+def curve_point(r, seconds):
+    """What a curve needs of one run; a failed run keeps its reason."""
+    if "error" in r:
+        return {"error": r["error"]}
+    return {"tetrahedra": r["tetrahedra"], "points": r["points"], "hausdorff_mm": r["hausdorff_mm"],
+            "hausdorff_95_mm": r["hausdorff_95_mm"], "mean_distance_mm": r["mean_distance_mm"],
+            "min_dihedral_deg": r["min_dihedral_deg"], "max_dihedral_deg": r["max_dihedral_deg"],
+            "seconds": seconds, "wall_seconds": r["wall_seconds"], "peak_mb": r["peak_mb"],
+            "tissue_hausdorff_mm": {label: t["hausdorff_mm"] for label, t in r["tissues"].items()},
+            "stage_seconds": r["seconds"] if isinstance(r["seconds"], dict) else None}
+
+
+def cbc3d_curve(options, cli, path, background, work):
+    """cbc3d at each lattice size, the paper's other settings; seconds = its whole run."""
+    points = []
+    for size in options.curve_sizes:
+        progress("  cbc3d --bcc-size %g" % size)
+        settings = ["--bcc-size", "%g" % size] + PAPER_SETTINGS[2:]
+        r = run_cbc3d(cli, path, background, options.iterations, work, settings=settings)
+        point = curve_point(r, r.get("seconds", {}).get("total"))
+        points.append(dict(point, bcc_size_mm=size))
+        progress("    " + point_text(point))
+    return points
+
+
+def cgal_size_options(factor):
+    return ["--facet-size", "%g" % (CGAL_SIZES[0] * factor), "--facet-distance", "%g" % (CGAL_SIZES[1] * factor),
+            "--cell-size", "%g" % (CGAL_SIZES[2] * factor)]
+
+
+def cgal_curve(options, cgal, path, background, work):
+    """CGAL at each factor, coarse to fine, with no time limits (tets, HD and seconds do not depend
+    on the load) and, unless --no-curve-cgal-default, by default (its seconds are what a user
+    waits). A factor whose predicted no-time-limit seconds exceed --curve-cgal-limit is skipped,
+    and so are the finer ones: the prediction scales the last run's seconds by the cube of the
+    size ratio (tets grow so where the cell size rules; fewer where the surface does)."""
+    points, last = [], None
+    for factor in sorted(options.curve_cgal_factors, reverse=True):
+        point = {"factor": factor, "sizes_mm": [s * factor for s in CGAL_SIZES]}
+        if last and options.curve_cgal_limit > 0:
+            predicted = last[1] * (last[0] / factor) ** 3
+            if predicted > options.curve_cgal_limit:
+                progress("  CGAL x%g skipped: predicted %.0f s > %g s" % (factor, predicted, options.curve_cgal_limit))
+                points.append(dict(point, skipped="predicted %.0f s > limit %g s" % (predicted, options.curve_cgal_limit)))
+                continue
+        progress("  CGAL x%g, no time limits" % factor)
+        r = run_cgal(cgal, path, background, work, True, cgal_size_options(factor))
+        point.update(curve_point(r, r.get("seconds")))
+        progress("    " + point_text(point))
+        if not options.no_curve_cgal_default and "error" not in r:
+            progress("  CGAL x%g, default" % factor)
+            d = run_cgal(cgal, path, background, work, False, cgal_size_options(factor))
+            point["default"] = curve_point(d, d.get("seconds"))
+            progress("    " + point_text(point["default"]))
+        points.append(point)
+        if "error" not in r:
+            last = (factor, r["seconds"])
+    return points
+
+
+def point_text(point):
+    if "error" in point:
+        return "failed: " + point["error"]
+    return "%d tets, HD %.2f mm (95%% %.2f), %.2f s" % (
+        point["tetrahedra"], point["hausdorff_mm"], point["hausdorff_95_mm"], point["seconds"])
+
+
+def run_curves(options, images, cli, cgal):
+    """Both curves on each image; after each image the JSON and its plot are written, so that an
+    interrupted run keeps what it measured."""
+    pyplot = import_pyplot() if options.plots else None
+    figures = {"settings": {"cbc3d": " ".join(PAPER_SETTINGS[2:] + ["--iterations", options.iterations]),
+                            "cgal": CGAL_SETTINGS if cgal else None,
+                            "cgal_limit_s": options.curve_cgal_limit},
+               "machine": {"cpus": os.cpu_count()}, "curves": {}}
+    start = time.monotonic()
+    with tempfile.TemporaryDirectory() as work:
+        for name, background in images:
+            path = os.path.join(SHARED, name)
+            progress("curves on %s" % name)
+            entry = figures["curves"][name] = {"cbc3d": cbc3d_curve(options, cli, path, background, work)}
+            if cgal:
+                entry["cgal"] = cgal_curve(options, cgal, path, background, work)
+            figures["wall_seconds"] = time.monotonic() - start
+            with open(options.json, "w") as out:
+                json.dump(figures, out, indent=2)
+            if pyplot:
+                progress("  plot %s" % plot_curves(pyplot, name, entry, options.plots))
+    return figures
+
+
+def import_pyplot():
+    """matplotlib with the Agg backend (no display), or None and one line saying so."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as pyplot
+        return pyplot
+    except ImportError:
+        print("matplotlib is missing (Debian: apt-get install python3-matplotlib, then /usr/bin/python3): "
+              "no plots", file=sys.stderr)
+        return None
+
+
+def measured(points, key):
+    """The points that ran and have key, in the order given: coarse to fine, so that a curve
+    that turns back (more tets at a coarser size) shows it."""
+    return [p for p in points if "tetrahedra" in p and p.get(key) is not None]
+
+
+def draw_series(axis, points, key, style, label, tags, **line):
+    done = measured(points, key)
+    if not done:
+        return
+    axis.plot([p["tetrahedra"] for p in done], [p[key] for p in done], style, label=label, **line)
+    for (x, y), text in (merged_tags(done, key, tags) if tags else []):
+        axis.annotate(text, (x, y), textcoords="offset points", xytext=(3, 3), fontsize=7)
+
+
+def merged_tags(points, key, tags):
+    """One tag per spot: points within 5% of each other in tets and value (the nidus meshes the
+    same at 4, 8 and 16 mm) share a tag "4/8/16" instead of overprinting it."""
+    spots = []
+    for p in points:
+        x, y = p["tetrahedra"], p[key]
+        near = next((s for s in spots if abs(x / s[0][0] - 1) < 0.05 and abs(y / s[0][1] - 1) < 0.05), None)
+        if near:
+            near[1].append(tags(p))
+        else:
+            spots.append(((x, y), [tags(p)]))
+    return [(spot, "/".join(texts)) for spot, texts in spots]
+
+
+def plain_number(value):
+    """20 rather than 2 x 10^1; 100k and 1M rather than 1e+05 and 1e+06."""
+    if value >= 1e6:
+        return "%gM" % (value / 1e6)
+    return "%gk" % (value / 1e3) if value >= 1e4 else "%g" % value
+
+
+def plain_log_ticks(ticks, low, high):
+    """Plain numbers on a log axis; between powers of ten, 2 and 5 are labelled where the axis spans
+    under two decades and 2 to 6 and 8 under one, so that a short axis has more than one label."""
+    from matplotlib.ticker import FuncFormatter, NullFormatter
+    ticks.set_major_formatter(FuncFormatter(lambda value, _: plain_number(value)))
+    if high / low >= 100:
+        ticks.set_minor_formatter(NullFormatter())
+        return
+    labelled = (2, 3, 4, 5, 6, 8) if high / low < 10 else (2, 5)
+    def minor(value, _):
+        mantissa = value / 10 ** math.floor(math.log10(value) + 1e-9)
+        whole = round(mantissa)
+        return plain_number(value) if whole in labelled and abs(mantissa - whole) < 1e-6 else ""
+    ticks.set_minor_formatter(FuncFormatter(minor))
+
+
+def plot_curves(pyplot, name, entry, folder):
+    """One PNG per image: HD (max solid, 95th percentile dashed) and seconds against tets, log
+    axes. cbc3d's points are tagged with the lattice size, CGAL's with the factor."""
+    figure, (hd, seconds) = pyplot.subplots(1, 2, figsize=(10, 4))
+    ours = sorted(entry["cbc3d"], key=lambda p: -p["bcc_size_mm"])
+    theirs = sorted(entry.get("cgal", []), key=lambda p: -p["factor"])
+    cgal_default = [dict(p["default"], factor=p["factor"]) for p in theirs if "tetrahedra" in p.get("default", {})]
+    ours_tag = lambda p: "%g" % p["bcc_size_mm"]
+    theirs_tag = lambda p: "x%g" % p["factor"]
+    draw_series(hd, ours, "hausdorff_mm", "o-C0", "cbc3d (tag: lattice mm)", ours_tag)
+    draw_series(hd, ours, "hausdorff_95_mm", "o--C0", None, None, mfc="none")
+    draw_series(hd, theirs, "hausdorff_mm", "s-C3", "CGAL no time limits (tag: size factor)", theirs_tag)
+    draw_series(hd, theirs, "hausdorff_95_mm", "s--C3", None, None, mfc="none")
+    draw_series(seconds, ours, "seconds", "o-C0", "cbc3d (whole run)", ours_tag)
+    draw_series(seconds, theirs, "seconds", "s-C3", "CGAL no time limits (make_mesh_3)", theirs_tag)
+    draw_series(seconds, cgal_default, "seconds", "s:C1", "CGAL default (make_mesh_3)", None, mfc="none")
+    hd.set_title("Hausdorff distance: max (solid), 95th percentile (dashed)", fontsize=9)
+    seconds.set_title("seconds (lower is faster)", fontsize=9)
+    # Legends where the curves cannot be: few tets with a small HD, few tets taking long.
+    for axis, what, corner in ((hd, "Hausdorff distance (mm)", "lower left"), (seconds, "seconds", "upper left")):
+        axis.set_xscale("log")
+        axis.set_yscale("log")
+        plain_log_ticks(axis.xaxis, *axis.get_xlim())
+        plain_log_ticks(axis.yaxis, *axis.get_ylim())
+        axis.set_xlabel("tetrahedra")
+        axis.set_ylabel(what)
+        axis.grid(True, which="both", alpha=0.3)
+        axis.legend(fontsize=7, loc=corner)
+    figure.suptitle(name)
+    figure.tight_layout()
+    os.makedirs(folder, exist_ok=True)
+    target = os.path.join(folder, "curves-%s.png" % name.split(".")[0])
+    figure.savefig(target, dpi=100)
+    pyplot.close(figure)
+    return target
+
+
+def redraw_curves(options, images):
+    """The table and plots of an earlier run, for the images asked."""
+    with open(options.curves_from) as source:
+        figures = json.load(source)
+    names = [name for name, _ in images]
+    figures["curves"] = {name: entry for name, entry in figures["curves"].items() if name in names}
+    pyplot = import_pyplot() if options.plots else None
+    for name, entry in figures["curves"].items() if pyplot else ():
+        progress("plot %s" % plot_curves(pyplot, name, entry, options.plots))
+    print_curves(figures)
+    return 0
+
+
+def print_curves(figures):
+    """Every point as a Markdown row: cbc3d by lattice size, CGAL by factor (no time limits, with
+    the default run's seconds and tets beside)."""
+    rows = []
+    for name, entry in figures["curves"].items():
+        for p in entry["cbc3d"]:
+            rows.append(curve_row(name, "cbc3d", "%g mm" % p["bcc_size_mm"], p) + ["", ""])
+        for p in entry.get("cgal", []):
+            size = "x%g (%s mm)" % (p["factor"], " / ".join("%g" % s for s in p["sizes_mm"]))
+            d = p.get("default", {})
+            rows.append(curve_row(name, "CGAL", size, p) + (
+                ["%.2f" % d["seconds"], "%d" % d["tetrahedra"]] if "tetrahedra" in d else ["", ""]))
+    print("Size curves: cbc3d at each lattice size (%s); CGAL Mesh_3 at multiples of the paper's facet size, "
+          "facet distance and cell size (%s), no time limits; seconds: cbc3d's whole run, CGAL's make_mesh_3. "
+          "Whole curves run: %.0f s." % (figures["settings"]["cbc3d"], CGAL_SETTINGS, figures.get("wall_seconds", 0)))
+    print()
+    print_table(["image", "mesher", "size", "tets", "HD max mm", "HD 95% mm", "mean mm", "seconds", "peak MB",
+                 "CGAL default s", "CGAL default tets"], rows)
+
+
+def curve_row(name, mesher, size, p):
+    if "skipped" in p:
+        return [name, mesher, size, "skipped: " + p["skipped"]] + [""] * 5
+    if "error" in p:
+        return [name, mesher, size, "failed: " + p["error"]] + [""] * 5
+    return [name, mesher, size, "%d" % p["tetrahedra"], "%.2f" % p["hausdorff_mm"], "%.2f" % p["hausdorff_95_mm"],
+            "%.2f" % p["mean_distance_mm"], "%.2f" % p["seconds"], "%.0f" % p["peak_mb"]]
+
+
 def main():
     options = parse_arguments()
+    images = [(name, background) for name, background in IMAGES
+              if not options.images or any(part in name for part in options.images)]
+    if not images:
+        print("no image of %s matches %s" % (", ".join(name for name, _ in IMAGES), " ".join(options.images)))
+        return 1
+    if options.curves_from:  # needs neither the images nor a build
+        return redraw_curves(options, images)
     if not os.path.isdir(SHARED):
         print("skipped: no ../shared/data beside the checkout")
         return 0
@@ -483,14 +777,16 @@ def main():
     cgal = os.path.join(options.build, "bin", "CBC3DCGALMesh3")
     if options.no_cgal or not os.path.exists(cgal):
         cgal = None
-    images = [(name, background) for name, background in IMAGES
-              if not options.images or any(part in name for part in options.images)]
-    if not images:
-        print("no image of %s matches %s" % (", ".join(name for name, _ in IMAGES), " ".join(options.images)))
-        return 1
     figures = {"machine": {"cpus": os.cpu_count(), "memory_available_mb": (available_memory_bytes() or 0) / 2**20},
                "settings": {"cbc3d": " ".join(PAPER_SETTINGS + ["--iterations", options.iterations]),
                             "cgal": CGAL_SETTINGS if cgal else None}}
+    if options.curves:
+        figures = run_curves(options, images, cli, cgal)
+        print(describe_cgal(cgal, options.no_cgal))
+        print()
+        print_curves(figures)
+        print("figures written to %s" % options.json)
+        return 0
     print("cbc3d %s --iterations %s" % (" ".join(PAPER_SETTINGS), options.iterations))
     if not options.scaling_only:
         print(describe_cgal(cgal, options.no_cgal))
