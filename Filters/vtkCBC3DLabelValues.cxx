@@ -261,9 +261,13 @@ bool OtherValuesBox(vtkDataArray* array, const std::array<int, 3>& dimensions, s
   {
     find(array);
   }
+  if (find.Upper[0] < 0)
+  {
+    return false; // lower and upper as they were
+  }
   lower = find.Lower;
   upper = find.Upper;
-  return upper[0] >= 0;
+  return true;
 }
 
 vtkSmartPointer<vtkDataArray> FromCodes(const std::vector<std::int32_t>& labels,

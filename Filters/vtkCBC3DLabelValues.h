@@ -37,7 +37,8 @@ bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, std::int32_t* 
 /**
  * The box (inclusive, x fastest over `dimensions`) of the voxels whose value is not `fill`: each
  * row is read from both ends up to its first and last such voxel. False when every voxel holds
- * `fill`. The values must have passed CollectValues.
+ * `fill` (then `lower` and `upper` are left as they were). The values must have passed
+ * CollectValues.
  */
 bool OtherValuesBox(vtkDataArray* array, const std::array<int, 3>& dimensions, std::int64_t fill,
   std::array<int, 3>& lower, std::array<int, 3>& upper);
