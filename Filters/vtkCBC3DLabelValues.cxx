@@ -131,7 +131,8 @@ struct BoxRows
     for (int k = this->Lower[2]; k < this->Lower[2] + this->Size[2]; ++k)
       for (int j = this->Lower[1]; j < this->Lower[1] + this->Size[1]; ++j)
       {
-        const vtkIdType start = this->Lower[0] + vtkIdType(this->Dimensions[0]) * (j + vtkIdType(this->Dimensions[1]) * k);
+        const vtkIdType start =
+          this->Lower[0] + vtkIdType(this->Dimensions[0]) * (j + vtkIdType(this->Dimensions[1]) * k);
         if (!visit(vtk::DataArrayValueRange<1>(array, start, start + this->Size[0]), j, k))
           return;
       }

@@ -61,6 +61,10 @@ Status ValidateLabelImage(const LabelImage& image)
       return Status::Error("the stored box of labels is not within the image");
     }
   }
+  if (image.BackgroundLabels.empty() && std::int64_t(n[0]) * n[1] * n[2] != image.VoxelCount())
+  {
+    return Status::Error("a stored box of labels needs a background label for the voxels beyond it");
+  }
   if (std::int64_t(image.Labels.size()) != std::int64_t(n[0]) * n[1] * n[2])
   {
     return Status::Error("the label array does not have one value per voxel");

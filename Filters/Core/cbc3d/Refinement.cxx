@@ -67,8 +67,10 @@ void ClearVoxelOwners(const LabelImage& image, const std::vector<Eigen::Vector3d
   std::array<std::int64_t, 3> first, last;
   for (int a = 0; a < 3; ++a)
   {
-    first[a] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(lower[a])) - 1, image.StoredLower[a], storedUpper[a]);
-    last[a] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::ceil(upper[a])) + 1, image.StoredLower[a], storedUpper[a]);
+    first[a] = std::clamp<std::int64_t>(
+      static_cast<std::int64_t>(std::floor(lower[a])) - 1, image.StoredLower[a], storedUpper[a]);
+    last[a] = std::clamp<std::int64_t>(
+      static_cast<std::int64_t>(std::ceil(upper[a])) + 1, image.StoredLower[a], storedUpper[a]);
   }
   for (std::int64_t k = first[2]; k <= last[2]; ++k)
     for (std::int64_t j = first[1]; j <= last[1]; ++j)

@@ -98,6 +98,9 @@ TEST(StoredBox, StoresLessAndReadsTheSameLabels)
   cbc3d::LabelImage wrong = box;
   wrong.StoredLower[0] = 29;
   EXPECT_FALSE(cbc3d::ValidateLabelImage(wrong).IsOk());
+  wrong = box;
+  wrong.BackgroundLabels.clear();
+  EXPECT_FALSE(cbc3d::ValidateLabelImage(wrong).IsOk());
 }
 
 TEST(StoredBox, ComponentsBoundaryVoxelsTargetsAndTopologyAgree)
