@@ -18,6 +18,8 @@
 #include <vtkPoints.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <sstream>
 
@@ -43,6 +45,31 @@ vtkDataArray* ChooseLabelArray(vtkInformation* arrayRequest, vtkImageData* image
   }
   return pointData->GetNumberOfArrays() == 1 ? pointData->GetArray(0) : nullptr;
 }
+
+namespace
+{
+// Stores the codes of the box of the voxels that do not hold the first background label, and
+// one voxel around it (the stages read one voxel beyond a tissue voxel), clamped to the image:
+// the rest of the image is that background, so a padded image costs what its box does.
+void StoreLabels(vtkDataArray* labels, const std::vector<vtkTypeInt64>& backgroundLabels, cbc3d::LabelImage& out)
+{
+  const std::array<int, 3>& d = out.Dimensions;
+  std::array<int, 3> lower = { 0, 0, 0 }, upper = { d[0] - 1, d[1] - 1, d[2] - 1 };
+  if (!backgroundLabels.empty() &&
+    vtkCBC3DLabelValues::OtherValuesBox(labels, d, backgroundLabels.front(), lower, upper))
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      lower[a] = std::max(lower[a] - 1, 0);
+      upper[a] = std::min(upper[a] + 1, d[a] - 1);
+    }
+  }
+  out.StoredLower = lower;
+  out.StoredSize = { upper[0] - lower[0] + 1, upper[1] - lower[1] + 1, upper[2] - lower[2] + 1 };
+  out.Labels.resize(std::size_t(out.StoredSize[0]) * out.StoredSize[1] * out.StoredSize[2]);
+  vtkCBC3DLabelValues::ToCodes(labels, out.Codes, d, out.StoredLower, out.StoredSize, out.Labels.data());
+}
+} // namespace
 
 bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   const std::vector<vtkTypeInt64>& backgroundLabels, cbc3d::LabelImage& out, std::string& error,
@@ -118,8 +145,7 @@ bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   {
     out.Codes.FindCode(backgroundLabels[b], out.BackgroundLabels[b]);
   }
-  out.Labels.resize(labels->GetNumberOfTuples());
-  vtkCBC3DLabelValues::ToCodes(labels, out.Codes, out.Labels.data());
+  StoreLabels(labels, backgroundLabels, out);
   const cbc3d::Status valid = cbc3d::ValidateLabelImage(out);
   if (!valid.IsOk())
   {

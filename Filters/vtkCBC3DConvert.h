@@ -43,8 +43,10 @@ vtkDataArray* ChooseLabelArray(vtkInformation* arrayRequest, vtkImageData* image
  * with one component, of an integer type or a float type whose values are all integers, each a
  * 64-bit signed integer. The core's labels are the codes of `out.Codes` (cbc3d::LabelCodes),
  * made for the image's labels, the background labels and `otherValues` (a mesh's labels, to
- * share one table): the values themselves when all fit in 32 bits. Returns false with a
- * one-line message for a bad array, or when the image is not 3-D or holds no tissue.
+ * share one table): the values themselves when all fit in 32 bits. Only the box of the voxels
+ * that do not hold the first background label, and one voxel around it, is stored
+ * (LabelImage::StoredLower, StoredSize). Returns false with a one-line message for a bad
+ * array, or when the image is not 3-D or holds no tissue.
  */
 bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   const std::vector<vtkTypeInt64>& backgroundLabels, cbc3d::LabelImage& out, std::string& error,

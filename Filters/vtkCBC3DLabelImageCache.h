@@ -4,10 +4,12 @@
  *
  * A pipeline hands one image to every CBC3D stage (lattice, refinement, deformation, quality),
  * and each stage needs the same int32 copy of its labels. Converting it once per stage cost a
- * quarter of the run on a large, mostly empty image (every conversion allocates, faults in and
- * fills a whole-image array). The cache keeps the last conversion, keyed by the label array,
- * its and the image's modification times and the background labels; a changed input or
- * setting misses and converts again. One entry, so it holds at most one image.
+ * quarter of the run on a large, mostly empty image (every conversion allocated, faulted in and
+ * filled a whole-image array; a conversion now stores only the box of the voxels other than the
+ * first background label, and one voxel around it: cbc3d::LabelImage). The cache keeps the last
+ * conversion, keyed by the label array, its and the image's modification times and the
+ * background labels; a changed input or setting misses and converts again. One entry, so it
+ * holds at most one image.
  */
 #ifndef vtkCBC3DLabelImageCache_h
 #define vtkCBC3DLabelImageCache_h

@@ -120,25 +120,93 @@ struct Collect
   }
 };
 
+// The rows of a box of the image, x fastest: the value range of each in turn.
+struct BoxRows
+{
+  std::array<int, 3> Dimensions, Lower, Size;
+
+  template <typename ArrayT, typename Visit>
+  void ForEach(ArrayT* array, Visit visit) const
+  {
+    for (int k = this->Lower[2]; k < this->Lower[2] + this->Size[2]; ++k)
+      for (int j = this->Lower[1]; j < this->Lower[1] + this->Size[1]; ++j)
+      {
+        const vtkIdType start =
+          this->Lower[0] + vtkIdType(this->Dimensions[0]) * (j + vtkIdType(this->Dimensions[1]) * k);
+        if (!visit(vtk::DataArrayValueRange<1>(array, start, start + this->Size[0]), j, k))
+          return;
+      }
+  }
+};
+
+// Writes the codes of the values of `range` from `out` on; false for a value the codes lack.
+template <typename Range>
+bool EncodeRange(const Range& range, const cbc3d::LabelCodes& codes, std::int32_t*& out)
+{
+  for (const auto value : range)
+  {
+    std::int64_t label = 0;
+    if (!ToLabelValue(value, label) || !codes.FindCode(label, *out++))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The whole array, or only a box of it when Box is set.
 struct Encode
 {
   const cbc3d::LabelCodes* Codes = nullptr;
   std::int32_t* Out = nullptr;
+  const BoxRows* Box = nullptr;
   bool Ok = true;
 
   template <typename ArrayT>
   void operator()(ArrayT* array)
   {
     std::int32_t* out = this->Out;
-    for (const auto value : vtk::DataArrayValueRange<1>(array))
+    if (!this->Box)
     {
-      std::int64_t label = 0;
-      if (!ToLabelValue(value, label) || !this->Codes->FindCode(label, *out++))
-      {
-        this->Ok = false;
-        return;
-      }
+      this->Ok = EncodeRange(vtk::DataArrayValueRange<1>(array), *this->Codes, out);
+      return;
     }
+    this->Box->ForEach(array, [&](const auto& row, int, int) {
+      this->Ok = EncodeRange(row, *this->Codes, out);
+      return this->Ok;
+    });
+  }
+};
+
+struct FindBox
+{
+  BoxRows Whole;
+  std::int64_t Fill = 0;
+  std::array<int, 3> Lower, Upper;
+
+  template <typename ArrayT>
+  void operator()(ArrayT* array)
+  {
+    this->Lower = this->Whole.Dimensions;
+    this->Upper = { -1, -1, -1 };
+    this->Whole.ForEach(array, [&](const auto& row, int j, int k) {
+      auto isFill = [&](auto value) {
+        std::int64_t label = 0;
+        return ToLabelValue(value, label) && label == this->Fill;
+      };
+      const auto first = std::find_if_not(row.begin(), row.end(), isFill);
+      if (first == row.end())
+        return true;
+      auto end = row.end();
+      do
+        --end;
+      while (isFill(*end));
+      const int last = int(end - row.begin());
+      this->Lower = { std::min(this->Lower[0], int(first - row.begin())), std::min(this->Lower[1], j),
+        std::min(this->Lower[2], k) };
+      this->Upper = { std::max(this->Upper[0], last), std::max(this->Upper[1], j), std::max(this->Upper[2], k) };
+      return true;
+    });
   }
 };
 } // namespace
@@ -167,6 +235,40 @@ bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, std::int32_t* 
     encode(array);
   }
   return encode.Ok;
+}
+
+bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, const std::array<int, 3>& dimensions,
+  const std::array<int, 3>& lower, const std::array<int, 3>& size, std::int32_t* out)
+{
+  Encode encode;
+  encode.Codes = &codes;
+  encode.Out = out;
+  const BoxRows box{ dimensions, lower, size };
+  encode.Box = &box;
+  if (!vtkArrayDispatch::Dispatch::Execute(array, encode))
+  {
+    encode(array);
+  }
+  return encode.Ok;
+}
+
+bool OtherValuesBox(vtkDataArray* array, const std::array<int, 3>& dimensions, std::int64_t fill,
+  std::array<int, 3>& lower, std::array<int, 3>& upper)
+{
+  FindBox find;
+  find.Whole = BoxRows{ dimensions, { 0, 0, 0 }, dimensions };
+  find.Fill = fill;
+  if (!vtkArrayDispatch::Dispatch::Execute(array, find))
+  {
+    find(array);
+  }
+  if (find.Upper[0] < 0)
+  {
+    return false; // lower and upper as they were
+  }
+  lower = find.Lower;
+  upper = find.Upper;
+  return true;
 }
 
 vtkSmartPointer<vtkDataArray> FromCodes(const std::vector<std::int32_t>& labels,

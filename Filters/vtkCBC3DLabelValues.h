@@ -14,6 +14,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkType.h>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -32,6 +33,20 @@ bool CollectValues(vtkDataArray* array, std::vector<std::int64_t>& values, std::
 
 /// Writes the code of each value of the array into `out`; false for a value the codes lack.
 bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, std::int32_t* out);
+
+/**
+ * The box (inclusive, x fastest over `dimensions`) of the voxels whose value is not `fill`: each
+ * row is read from both ends up to its first and last such voxel. False when every voxel holds
+ * `fill` (then `lower` and `upper` are left as they were). The values must have passed
+ * CollectValues.
+ */
+bool OtherValuesBox(vtkDataArray* array, const std::array<int, 3>& dimensions, std::int64_t fill,
+  std::array<int, 3>& lower, std::array<int, 3>& upper);
+
+/// ToCodes over the box of `size` voxels from `lower` of an image of `dimensions`: the codes of
+/// its voxels, x fastest, into `out`.
+bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, const std::array<int, 3>& dimensions,
+  const std::array<int, 3>& lower, const std::array<int, 3>& size, std::int32_t* out);
 
 /**
  * A label array holding the values of `codes` (`components` per tuple): a vtkIntArray when

@@ -32,8 +32,7 @@ std::vector<std::array<int, 3>> BlockedOffsets(TargetPattern pattern)
 Eigen::Vector3d TargetPosition(const LabelImage& image, std::int64_t voxel, TargetPlacement placement)
 {
   const auto& d = image.Dimensions;
-  const std::int64_t row = d[0], slice = row * d[1];
-  const int i = int(voxel % row), j = int((voxel / row) % d[1]), k = int(voxel / slice);
+  const auto [i, j, k] = image.VoxelCoordinates(voxel);
   Eigen::Vector3d index(i, j, k);
   if (placement == TargetPlacement::VoxelFace)
   {
@@ -44,7 +43,7 @@ Eigen::Vector3d TargetPosition(const LabelImage& image, std::int64_t voxel, Targ
     for (const auto& f : faces)
     {
       const int a = i + f[0], b = j + f[1], c = k + f[2];
-      if (a < 0 || b < 0 || c < 0 || a >= d[0] || b >= d[1] || c >= d[2] || image.LabelAt(a, b, c) != label)
+      if (a < 0 || b < 0 || c < 0 || a >= d[0] || b >= d[1] || c >= d[2] || image.LabelOf(a, b, c) != label)
       {
         toward += Eigen::Vector3d(f[0], f[1], f[2]);
         ++others;
@@ -71,15 +70,17 @@ std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetP
     {
       return OutsideLabel;
     }
-    const std::int32_t label = image.LabelAt(i, j, k);
+    const std::int32_t label = image.LabelOf(i, j, k);
     return image.IsTissue(label) ? label : OutsideLabel;
   };
   for (const std::int32_t tissue : image.TissueLabels())
   {
     std::set<LabelSet> thisTissue;
-    for (int k = 0; k < d[2]; ++k)
-      for (int j = 0; j < d[1]; ++j)
-        for (int i = 0; i < d[0]; ++i)
+    // Beyond the stored box there is no tissue, and one voxel around every tissue voxel is stored.
+    const std::array<int, 3> first = image.StoredLower, last = image.StoredUpper();
+    for (int k = first[2]; k <= last[2]; ++k)
+      for (int j = first[1]; j <= last[1]; ++j)
+        for (int i = first[0]; i <= last[0]; ++i)
         {
           const std::int64_t voxel = image.VoxelIndex(i, j, k);
           if (image.Labels[voxel] != tissue || !allowed[voxel])

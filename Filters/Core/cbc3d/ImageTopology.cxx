@@ -21,12 +21,13 @@ struct LabelBox
 std::vector<LabelBox> TissueBoxes(const LabelImage& image)
 {
   std::vector<LabelBox> boxes;
-  const auto& d = image.Dimensions;
+  // The stored box holds every tissue voxel, in the image's order.
+  const std::array<int, 3> first = image.StoredLower, upper = image.StoredUpper();
   std::size_t last = 0;
   std::int64_t voxel = 0;
-  for (int k = 0; k < d[2]; ++k)
-    for (int j = 0; j < d[1]; ++j)
-      for (int i = 0; i < d[0]; ++i, ++voxel)
+  for (int k = first[2]; k <= upper[2]; ++k)
+    for (int j = first[1]; j <= upper[1]; ++j)
+      for (int i = first[0]; i <= upper[0]; ++i, ++voxel)
       {
         const std::int32_t label = image.Labels[voxel];
         if (last >= boxes.size() || boxes[last].Label != label)
@@ -67,7 +68,7 @@ std::int64_t VoxelSurfaceEuler(
   std::vector<unsigned char> corner(n[0] * n[1] * n[2], 0);
   std::array<std::vector<unsigned char>, 3> edge;
   edge.fill(corner);
-  const std::array<std::int64_t, 3> voxelStride = { 1, d[0], std::int64_t(d[0]) * d[1] };
+  const std::array<std::int64_t, 3> voxelStride = image.VoxelStrides(); // one voxel around a tissue is stored
   std::int64_t faces = 0;
   for (int k = lower[2]; k <= upper[2]; ++k)
     for (int j = lower[1]; j <= upper[1]; ++j)

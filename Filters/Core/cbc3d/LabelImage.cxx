@@ -53,7 +53,19 @@ Status ValidateLabelImage(const LabelImage& image)
         << " voxels; a 3-D label map with at least 2 voxels along every axis is required";
     return Status::Error(msg.str());
   }
-  if (std::int64_t(image.Labels.size()) != image.VoxelCount())
+  const auto& n = image.StoredDimensions();
+  for (int a = 0; a < 3; ++a)
+  {
+    if (image.StoredLower[a] < 0 || n[a] < 1 || image.StoredLower[a] + n[a] > d[a])
+    {
+      return Status::Error("the stored box of labels is not within the image");
+    }
+  }
+  if (image.BackgroundLabels.empty() && std::int64_t(n[0]) * n[1] * n[2] != image.VoxelCount())
+  {
+    return Status::Error("a stored box of labels needs a background label for the voxels beyond it");
+  }
+  if (std::int64_t(image.Labels.size()) != std::int64_t(n[0]) * n[1] * n[2])
   {
     return Status::Error("the label array does not have one value per voxel");
   }
@@ -89,21 +101,23 @@ bool TissueIndexBounds(const LabelImage& image, std::array<int, 3>& lower,
   std::array<int, 3>& upper)
 {
   const auto& d = image.Dimensions;
+  const std::array<int, 3> first = image.StoredLower, last = image.StoredUpper();
   lower = { d[0], d[1], d[2] };
   upper = { -1, -1, -1 };
   // Slices in parallel; min and max merge exactly, so the box is the same for any thread count.
+  // Beyond the stored box every voxel is background.
 #pragma omp parallel
   {
     std::array<int, 3> lo = { d[0], d[1], d[2] }, hi = { -1, -1, -1 };
 #pragma omp for schedule(static) nowait
-    for (int k = 0; k < d[2]; ++k)
+    for (int k = first[2]; k <= last[2]; ++k)
     {
-      for (int j = 0; j < d[1]; ++j)
+      for (int j = first[1]; j <= last[1]; ++j)
       {
-        const std::int32_t* row = image.Labels.data() + image.VoxelIndex(0, j, k);
-        for (int i = 0; i < d[0]; ++i)
+        const std::int32_t* row = image.Labels.data() + image.VoxelIndex(first[0], j, k);
+        for (int i = first[0]; i <= last[0]; ++i)
         {
-          if (image.IsTissue(row[i]))
+          if (image.IsTissue(row[i - first[0]]))
           {
             lo = { std::min(lo[0], i), std::min(lo[1], j), std::min(lo[2], k) };
             hi = { std::max(hi[0], i), std::max(hi[1], j), std::max(hi[2], k) };

@@ -62,17 +62,21 @@ void ClearVoxelOwners(const LabelImage& image, const std::vector<Eigen::Vector3d
     lower = lower.cwiseMin(index);
     upper = upper.cwiseMax(index);
   }
+  // The owners are indexed like the stored labels: only the stored box has any.
+  const std::array<int, 3> storedUpper = image.StoredUpper();
   std::array<std::int64_t, 3> first, last;
   for (int a = 0; a < 3; ++a)
   {
-    first[a] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(lower[a])) - 1, 0, image.Dimensions[a] - 1);
-    last[a] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::ceil(upper[a])) + 1, 0, image.Dimensions[a] - 1);
+    first[a] = std::clamp<std::int64_t>(
+      static_cast<std::int64_t>(std::floor(lower[a])) - 1, image.StoredLower[a], storedUpper[a]);
+    last[a] = std::clamp<std::int64_t>(
+      static_cast<std::int64_t>(std::ceil(upper[a])) + 1, image.StoredLower[a], storedUpper[a]);
   }
   for (std::int64_t k = first[2]; k <= last[2]; ++k)
     for (std::int64_t j = first[1]; j <= last[1]; ++j)
     {
-      std::int32_t* row = voxelOwner.data() + image.VoxelIndex(0, int(j), int(k));
-      std::fill(row + first[0], row + last[0] + 1, -1);
+      std::int32_t* row = voxelOwner.data() + image.VoxelIndex(int(first[0]), int(j), int(k));
+      std::fill(row, row + (last[0] - first[0]) + 1, -1);
     }
 }
 

@@ -56,15 +56,17 @@ std::map<std::int32_t, std::vector<std::int64_t>> TissueBoundaryVoxels(
   const LabelImage& image, int numberOfThreads)
 {
   const auto& d = image.Dimensions;
+  // Beyond the stored box there is no tissue, and one voxel around every tissue voxel is stored.
+  const std::array<int, 3> first = image.StoredLower, last = image.StoredUpper();
   // One list of (label, voxel) per slice, merged in slice order for a thread-independent result.
   std::vector<std::vector<std::pair<std::int32_t, std::int64_t>>> perSlice(d[2]);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(ThreadCount(numberOfThreads))
-  for (int k = 0; k < d[2]; ++k)
+  for (int k = first[2]; k <= last[2]; ++k)
   {
     auto& found = perSlice[k];
-    for (int j = 0; j < d[1]; ++j)
+    for (int j = first[1]; j <= last[1]; ++j)
     {
-      for (int i = 0; i < d[0]; ++i)
+      for (int i = first[0]; i <= last[0]; ++i)
       {
         const std::int32_t label = image.LabelAt(i, j, k);
         if (!image.IsTissue(label))

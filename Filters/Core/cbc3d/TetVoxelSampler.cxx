@@ -189,17 +189,19 @@ std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int s
   const double step = 1.0 / subdivision;
   const double offset = 0.5 * step - 0.5; // 0 at subdivision 1: the voxel centres
   std::array<std::int64_t, 3> first, last, inImageFirst, inImageLast;
+  const std::array<int, 3> storedFirst = image.StoredLower, storedLast = image.StoredUpper();
   for (int a = 0; a < 3; ++a)
   {
     first[a] = static_cast<std::int64_t>(std::ceil((tet.Lower[a] - offset) / step - 1e-9));
     last[a] = static_cast<std::int64_t>(std::floor((tet.Upper[a] - offset) / step + 1e-9));
-    // The samples inside the image along this axis: centres from -0.5 to dimension - 0.5
-    // (exact: the step is a power of two).
-    inImageFirst[a] = static_cast<std::int64_t>(std::ceil((-0.5 - offset) / step));
-    inImageLast[a] = static_cast<std::int64_t>(std::ceil((image.Dimensions[a] - 0.5 - offset) / step)) - 1;
+    // The samples inside the stored box along this axis: centres from its first voxel - 0.5 to
+    // its last + 0.5 (exact: the step is a power of two).
+    inImageFirst[a] = static_cast<std::int64_t>(std::ceil((storedFirst[a] - 0.5 - offset) / step));
+    inImageLast[a] = static_cast<std::int64_t>(std::ceil((storedLast[a] + 0.5 - offset) / step)) - 1;
   }
   // Beyond the image is background, as the image border is for boundary voxels: a tet that
-  // reaches out of a field of view that cuts the tissue counts what lies outside.
+  // reaches out of a field of view that cuts the tissue counts what lies outside. Beyond the
+  // stored box the image holds that same background, so it counts the same way.
   const bool outsideCounts = !image.BackgroundLabels.empty();
   const std::int32_t outside = outsideCounts ? image.BackgroundLabels.front() : 0;
   auto addOutside = [&](std::int64_t n) -> std::int64_t {
@@ -227,15 +229,17 @@ std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int s
       const std::int64_t to = rowInImage ? std::min(run.Last, inImageLast[0]) : run.Last;
       // In sample order: those before the image, those in it, those after.
       samples += addOutside(std::min(from, run.Last + 1) - run.First);
-      const int vj = std::clamp(static_cast<int>(std::lround(offset + j * step)), 0, image.Dimensions[1] - 1);
-      const int vk = std::clamp(static_cast<int>(std::lround(offset + k * step)), 0, image.Dimensions[2] - 1);
+      const int vj = std::clamp(static_cast<int>(std::lround(offset + j * step)), storedFirst[1], storedLast[1]);
+      const int vk = std::clamp(static_cast<int>(std::lround(offset + k * step)), storedFirst[2], storedLast[2]);
+      const std::int64_t rowVoxels = image.VoxelIndex(storedFirst[0], vj, vk) - storedFirst[0];
       for (std::int64_t i = from; i <= to; ++i)
       {
-        const int vi = std::clamp(static_cast<int>(std::lround(offset + i * step)), 0, image.Dimensions[0] - 1);
-        counts.Add(image.LabelAt(vi, vj, vk), weight);
+        const int vi = std::clamp(static_cast<int>(std::lround(offset + i * step)), storedFirst[0], storedLast[0]);
+        const std::int64_t voxel = rowVoxels + vi;
+        counts.Add(image.Labels[voxel], weight);
         if (voxelOwner && subdivision == 1)
         {
-          voxelOwner[image.VoxelIndex(vi, vj, vk)] = owner;
+          voxelOwner[voxel] = owner;
         }
         ++samples;
       }

@@ -44,7 +44,8 @@ struct LabelCounts
 /// each axis, each sample taking the label of the voxel it falls in (the paper's local
 /// up-sampling) with a weight of its share of a voxel. Samples beyond the image count as the
 /// first background label (as the image border counts as outside for boundary voxels).
-/// With `voxelOwner`, each voxel whose centre the tet owns gets `owner` written at its index.
+/// With `voxelOwner` (indexed like image.Labels), each stored voxel whose centre the tet owns
+/// gets `owner` written at its index.
 /// Returns the sub-grid used: 1 when the tet holds voxel centres (its counts are then whole
 /// voxels that no other tet counts), 2 to 16 otherwise, 0 when it holds no sample at all.
 int SampleTetLabels(const LabelImage& image, const std::array<Eigen::Vector3d, 4>& corners,

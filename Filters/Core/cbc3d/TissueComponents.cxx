@@ -16,9 +16,10 @@ template <typename InRegion, typename Same, typename Found>
 std::vector<std::int32_t> FloodComponents(const LabelImage& image, const std::array<int, 3>& lower,
   const std::array<int, 3>& upper, InRegion inRegion, Same same, Found found)
 {
+  // Indexed like the stored labels: row and slice are the stored box's strides.
   std::vector<std::int32_t> componentOfVoxel(image.Labels.size(), -1);
-  const auto& d = image.Dimensions;
-  const std::int64_t row = d[0], slice = std::int64_t(d[0]) * d[1];
+  const std::array<std::int64_t, 3> strides = image.VoxelStrides();
+  const std::int64_t row = strides[1], slice = strides[2];
   struct Run
   {
     std::int64_t J, K;
@@ -30,7 +31,7 @@ std::vector<std::int32_t> FloodComponents(const LabelImage& image, const std::ar
   bool boxFace = false;
   // Claims the unclaimed run through `voxel` (in row j, k) and queues it.
   auto claimRun = [&](std::int64_t voxel, std::int64_t j, std::int64_t k) {
-    const std::int64_t rowStart = j * row + k * slice;
+    const std::int64_t rowStart = image.VoxelIndex(0, int(j), int(k)); // may lie before the box
     std::int64_t first = voxel, last = voxel;
     componentOfVoxel[voxel] = count;
     while (first - rowStart > lower[0] && componentOfVoxel[first - 1] < 0 && inRegion(first - 1) &&
@@ -47,7 +48,7 @@ std::vector<std::int32_t> FloodComponents(const LabelImage& image, const std::ar
     for (std::int64_t j = lower[1]; j <= upper[1]; ++j)
       for (std::int64_t i = lower[0]; i <= upper[0]; ++i)
       {
-        const std::int64_t seed = i + j * row + k * slice;
+        const std::int64_t seed = image.VoxelIndex(int(i), int(j), int(k));
         if (componentOfVoxel[seed] >= 0 || !inRegion(seed))
         {
           continue;
@@ -125,13 +126,16 @@ BackgroundComponents FindBackgroundComponents(const LabelImage& image)
   std::array<int, 3> lower, upper;
   if (!TissueIndexBounds(image, lower, upper))
   {
-    lower = { 0, 0, 0 };
-    upper = { image.Dimensions[0] - 1, image.Dimensions[1] - 1, image.Dimensions[2] - 1 };
+    lower = image.StoredLower;
+    upper = image.StoredUpper();
   }
+  // The layer lies within the stored box: the box holds every voxel but the first background's
+  // and one voxel around them, clamped to the image.
+  const std::array<int, 3> storedUpper = image.StoredUpper();
   for (int axis = 0; axis < 3; ++axis)
   {
-    lower[axis] = std::max(lower[axis] - 1, 0);
-    upper[axis] = std::min(upper[axis] + 1, image.Dimensions[axis] - 1);
+    lower[axis] = std::max(lower[axis] - 1, image.StoredLower[axis]);
+    upper[axis] = std::min(upper[axis] + 1, storedUpper[axis]);
   }
   result.ComponentOfVoxel = FloodComponents(
     image, lower, upper, [&](std::int64_t v) { return image.IsBackground(image.Labels[v]); },
