@@ -129,20 +129,24 @@ std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t po
 #pragma omp parallel for schedule(dynamic, 4096) num_threads(threads)
   for (std::int64_t a = 0; a < bucketCount; ++a)
   {
-    MeshFace* face = faces.data() + firstFace[a] - 1;
+    std::size_t next = firstFace[a]; // the bucket's next face
     for (std::size_t e = buckets.Start[a]; e < buckets.Start[a + 1]; ++e)
     {
-      if (e == buckets.Start[a] || entries[e].Key != entries[e - 1].Key)
+      if (e != buckets.Start[a] && entries[e].Key == entries[e - 1].Key)
       {
-        ++face;
-        face->Points = { static_cast<PointId>(a), static_cast<PointId>(entries[e].Key / pointCount),
-          static_cast<PointId>(entries[e].Key % pointCount) };
+        MeshFace& face = faces[next - 1]; // one more tet of the same face
+        if (face.TetCount < 2)
+        {
+          face.Tets[face.TetCount] = entries[e].Tet;
+        }
+        ++face.TetCount;
+        continue;
       }
-      if (face->TetCount < 2)
-      {
-        face->Tets[face->TetCount] = entries[e].Tet;
-      }
-      ++face->TetCount;
+      MeshFace& face = faces[next++];
+      face.Points = { static_cast<PointId>(a), static_cast<PointId>(entries[e].Key / pointCount),
+        static_cast<PointId>(entries[e].Key % pointCount) };
+      face.Tets[0] = entries[e].Tet;
+      face.TetCount = 1;
     }
   }
   return faces;

@@ -123,3 +123,13 @@ TEST(MeshFaces, VisitingGivesTheListInItsOrder)
   });
   EXPECT_EQ(next, faces.size());
 }
+
+TEST(MeshFaces, PointsWithoutTetsHaveNoFaces)
+{
+  const std::vector<cbc3d::Tet> none;
+  EXPECT_TRUE(cbc3d::FindMeshFaces(none, 5, 2).empty());
+  int visited = 0;
+  cbc3d::VisitMeshFaces(none, 5, 2, [&](const cbc3d::MeshFace&) { ++visited; });
+  EXPECT_EQ(visited, 0);
+  EXPECT_TRUE(cbc3d::FaceNeighbours(none, 5, 2).empty());
+}
