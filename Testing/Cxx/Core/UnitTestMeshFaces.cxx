@@ -81,7 +81,7 @@ TEST(MeshFaces, TheListIsTheSameForAnyThreadsAndMatchesAMapOfFaces)
     }
     ++it;
   }
-  for (const int threads : { 2, 3, 8 })
+  for (const int threads : { 2, 3, 4 })
   {
     const auto parallel = cbc3d::FindMeshFaces(mesh, threads);
     ASSERT_EQ(parallel.size(), serial.size());
