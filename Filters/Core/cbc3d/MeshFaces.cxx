@@ -46,10 +46,37 @@ struct FaceBuckets
 {
   std::vector<std::size_t> Start;
   std::unique_ptr<FaceEntry[]> Entries; // not zeroed: the threads' fill touches it first
+
+  /// Calls `emit` with each distinct face of bucket `a`, in order.
+  template <typename Emit>
+  void ForEachFace(std::size_t a, std::uint64_t pointCount, Emit&& emit) const
+  {
+    const FaceEntry* entries = this->Entries.get();
+    for (std::size_t e = this->Start[a]; e < this->Start[a + 1];)
+    {
+      MeshFace face;
+      face.Points = { static_cast<PointId>(a), static_cast<PointId>(entries[e].Key / pointCount),
+        static_cast<PointId>(entries[e].Key % pointCount) };
+      const std::uint64_t key = entries[e].Key;
+      for (; e < this->Start[a + 1] && entries[e].Key == key; ++e)
+      {
+        if (face.TetCount < 2)
+        {
+          face.Tets[face.TetCount] = entries[e].Tet;
+        }
+        ++face.TetCount;
+      }
+      emit(face);
+    }
+  }
 };
 
 FaceBuckets BucketFaces(const std::vector<Tet>& tets, std::uint64_t pointCount, int threads)
 {
+  if (pointCount >= (std::uint64_t{ 1 } << 32))
+  {
+    throw std::length_error("mesh faces: more than 2^32 points"); // the keys would not fit
+  }
   // Faces of a tet with sorted corners a < b < c < d: bcd, acd, abd, abc.
   FaceBuckets buckets;
   buckets.Start.assign(pointCount + 1, 0);
@@ -100,26 +127,15 @@ FaceBuckets BucketFaces(const std::vector<Tet>& tets, std::uint64_t pointCount, 
 
 std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads)
 {
-  if (pointCount >= (std::uint64_t{ 1 } << 32))
-  {
-    throw std::length_error("FindMeshFaces: more than 2^32 points");
-  }
   const int threads = ThreadCount(numberOfThreads);
   const FaceBuckets buckets = BucketFaces(tets, pointCount, threads);
-  const FaceEntry* entries = buckets.Entries.get();
   const std::int64_t bucketCount = static_cast<std::int64_t>(pointCount);
-
   // Distinct faces per bucket, then each bucket writes its faces from its own offset.
   std::vector<std::size_t> firstFace(pointCount + 1, 0);
 #pragma omp parallel for schedule(dynamic, 4096) num_threads(threads)
   for (std::int64_t a = 0; a < bucketCount; ++a)
   {
-    std::size_t distinct = 0;
-    for (std::size_t e = buckets.Start[a]; e < buckets.Start[a + 1]; ++e)
-    {
-      distinct += e == buckets.Start[a] || entries[e].Key != entries[e - 1].Key;
-    }
-    firstFace[a + 1] = distinct;
+    buckets.ForEachFace(a, pointCount, [&](const MeshFace&) { ++firstFace[a + 1]; });
   }
   for (std::size_t a = 0; a < pointCount; ++a)
   {
@@ -129,25 +145,8 @@ std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t po
 #pragma omp parallel for schedule(dynamic, 4096) num_threads(threads)
   for (std::int64_t a = 0; a < bucketCount; ++a)
   {
-    std::size_t next = firstFace[a]; // the bucket's next face
-    for (std::size_t e = buckets.Start[a]; e < buckets.Start[a + 1]; ++e)
-    {
-      if (e != buckets.Start[a] && entries[e].Key == entries[e - 1].Key)
-      {
-        MeshFace& face = faces[next - 1]; // one more tet of the same face
-        if (face.TetCount < 2)
-        {
-          face.Tets[face.TetCount] = entries[e].Tet;
-        }
-        ++face.TetCount;
-        continue;
-      }
-      MeshFace& face = faces[next++];
-      face.Points = { static_cast<PointId>(a), static_cast<PointId>(entries[e].Key / pointCount),
-        static_cast<PointId>(entries[e].Key % pointCount) };
-      face.Tets[0] = entries[e].Tet;
-      face.TetCount = 1;
-    }
+    std::size_t next = firstFace[a];
+    buckets.ForEachFace(a, pointCount, [&](const MeshFace& face) { faces[next++] = face; });
   }
   return faces;
 }
@@ -155,37 +154,10 @@ std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t po
 void VisitMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads,
   const std::function<void(const MeshFace&)>& visit)
 {
-  if (pointCount >= (std::uint64_t{ 1 } << 32))
-  {
-    throw std::length_error("VisitMeshFaces: more than 2^32 points");
-  }
   const FaceBuckets buckets = BucketFaces(tets, pointCount, ThreadCount(numberOfThreads));
-  const FaceEntry* entries = buckets.Entries.get();
-  MeshFace face;
   for (std::size_t a = 0; a < pointCount; ++a)
   {
-    for (std::size_t e = buckets.Start[a]; e < buckets.Start[a + 1]; ++e)
-    {
-      if (e == buckets.Start[a] || entries[e].Key != entries[e - 1].Key)
-      {
-        if (e != buckets.Start[a])
-        {
-          visit(face);
-        }
-        face = MeshFace();
-        face.Points = { static_cast<PointId>(a), static_cast<PointId>(entries[e].Key / pointCount),
-          static_cast<PointId>(entries[e].Key % pointCount) };
-      }
-      if (face.TetCount < 2)
-      {
-        face.Tets[face.TetCount] = entries[e].Tet;
-      }
-      ++face.TetCount;
-    }
-    if (buckets.Start[a] != buckets.Start[a + 1])
-    {
-      visit(face);
-    }
+    buckets.ForEachFace(a, pointCount, visit);
   }
 }
 
