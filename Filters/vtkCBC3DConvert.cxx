@@ -6,6 +6,8 @@
 #include <vtkAlgorithm.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkDoubleArray.h>
 #include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
@@ -15,6 +17,7 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkPoints.h>
 #include <vtkUnstructuredGrid.h>
 
@@ -253,6 +256,56 @@ bool MeshLabelValues(vtkUnstructuredGrid* grid, std::vector<std::int64_t>& value
   return labels && vtkCBC3DLabelValues::CollectValues(labels, values, error);
 }
 
+namespace
+{
+// The points' coordinates, read straight from a double array where they are one (the
+// stages' own output), else point by point.
+void CopyPoints(vtkUnstructuredGrid* grid, std::vector<Eigen::Vector3d>& points)
+{
+  vtkDoubleArray* doubles = grid->GetPoints() ? vtkDoubleArray::SafeDownCast(grid->GetPoints()->GetData()) : nullptr;
+  const vtkIdType count = static_cast<vtkIdType>(points.size());
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    if (doubles)
+      points[i] = Eigen::Vector3d(doubles->GetPointer(3 * i));
+    else
+      grid->GetPoint(i, points[i].data());
+  }
+}
+
+// The first cell that is not a tetrahedron of 4 points; -1 if none.
+vtkIdType FirstCellNotTet(vtkUnstructuredGrid* grid)
+{
+  vtkUnsignedCharArray* types = grid->GetCellTypesArray();
+  vtkCellArray* cells = grid->GetCells();
+  const vtkIdType count = grid->GetNumberOfCells();
+  for (vtkIdType c = 0; c < count; ++c)
+  {
+    if ((types ? types->GetValue(c) : grid->GetCellType(c)) != VTK_TETRA || cells->GetCellSize(c) != 4)
+      return c;
+  }
+  return -1;
+}
+
+// Each tet's four point ids, straight from the cell array's storage (32 or 64 bits).
+void CopyTets(vtkCellArray* cells, std::vector<cbc3d::Tet>& tets)
+{
+  if (tets.empty())
+    return;
+  auto copy = [&tets](auto* offsets, auto* connectivity) {
+    const auto* offset = offsets->GetPointer(0);
+    const auto* ids = connectivity->GetPointer(0);
+    for (std::size_t c = 0; c < tets.size(); ++c)
+      for (int v = 0; v < 4; ++v)
+        tets[c][v] = static_cast<cbc3d::PointId>(ids[offset[c] + v]);
+  };
+  if (cells->IsStorage64Bit())
+    copy(cells->GetOffsetsArray64(), cells->GetConnectivityArray64());
+  else
+    copy(cells->GetOffsetsArray32(), cells->GetConnectivityArray32());
+}
+} // namespace
+
 bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, cbc3d::TetMesh& out, std::string& error,
   const cbc3d::LabelCodes& codes)
 {
@@ -262,28 +315,18 @@ bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, cbc3d::TetMesh& out, std::s
   {
     return false;
   }
-  const vtkIdType cellCount = grid->GetNumberOfCells();
   out.Points.resize(grid->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < grid->GetNumberOfPoints(); ++i)
+  CopyPoints(grid, out.Points);
+  const vtkIdType cellCount = grid->GetNumberOfCells();
+  const vtkIdType notTet = FirstCellNotTet(grid);
+  if (notTet >= 0)
   {
-    grid->GetPoint(i, out.Points[i].data());
+    error = "the mesh has a cell that is not a tetrahedron (cell " + std::to_string(notTet) + ")";
+    return false;
   }
   out.Tets.resize(cellCount);
   out.Labels.resize(cellCount);
-  vtkNew<vtkIdList> ids;
-  for (vtkIdType c = 0; c < cellCount; ++c)
-  {
-    if (grid->GetCellType(c) != VTK_TETRA)
-    {
-      error = "the mesh has a cell that is not a tetrahedron (cell " + std::to_string(c) + ")";
-      return false;
-    }
-    grid->GetCellPoints(c, ids);
-    for (int v = 0; v < 4; ++v)
-    {
-      out.Tets[c][v] = ids->GetId(v);
-    }
-  }
+  CopyTets(grid->GetCells(), out.Tets);
   if (!vtkCBC3DLabelValues::ToCodes(labels, codes, out.Labels.data()))
   {
     error = "the mesh's 'Label' array holds a label that is not a 32-bit integer, or not an integer";

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace cbc3d
 {
 PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell)
-  : Points(points)
-  , Cell(cell)
+  : Cell(cell)
 {
   if (points.empty())
   {
@@ -45,9 +45,12 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell)
   // Within a cell, points keep ascending order (a stable counting sort).
   std::vector<int> next(this->CellStart.begin(), this->CellStart.end() - 1);
   this->Sorted.resize(points.size());
+  this->SortedPoints.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
   {
-    this->Sorted[next[cellOf[i]]++] = static_cast<int>(i);
+    const int s = next[cellOf[i]]++;
+    this->Sorted[s] = static_cast<int>(i);
+    this->SortedPoints[s] = points[i];
   }
 }
 
@@ -62,18 +65,40 @@ Eigen::Vector3i PointGrid::CellOf(const Eigen::Vector3d& x) const
   return c;
 }
 
+Eigen::Matrix<std::int64_t, 3, 1> PointGrid::QueryCellOf(const Eigen::Vector3d& x) const
+{
+  Eigen::Matrix<std::int64_t, 3, 1> c;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double f = std::floor((x[a] - this->Origin[a]) / this->Cell);
+    c[a] = std::isnan(f) ? 0 : static_cast<std::int64_t>(std::clamp(f, -1e9, 1e9));
+  }
+  return c;
+}
+
+double PointGrid::OutsideDistance(
+  const Eigen::Vector3d& x, const Eigen::Matrix<std::int64_t, 3, 1>& centre, std::int64_t k) const
+{
+  double nearest = std::numeric_limits<double>::infinity();
+  double scale = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (centre[a] - k > 0) // grid cells below the cube
+    {
+      nearest = std::min(nearest, x[a] - (this->Origin[a] + double(centre[a] - k) * this->Cell));
+    }
+    if (centre[a] + k < this->Size[a] - 1) // and above it
+    {
+      nearest = std::min(nearest, this->Origin[a] + double(centre[a] + k + 1) * this->Cell - x[a]);
+    }
+    scale = std::max({ scale, std::abs(x[a]), std::abs(this->Origin[a]) });
+  }
+  // A point on a cell's face may have been bucketed a rounding error to either side of it.
+  return nearest - (1e-6 * this->Cell + 1e-12 * scale);
+}
+
 int PointGrid::NearestAny(const Eigen::Vector3d& x) const
 {
-  if (this->Sorted.empty())
-  {
-    return -1;
-  }
-  // Exact: a point found within r is the nearest, since a nearer one lies within r too.
-  int nearest = -1;
-  for (double radius = this->Cell; nearest < 0; radius *= 2.0)
-  {
-    nearest = this->NearestInCube(x, radius, [](int) { return true; });
-  }
-  return nearest;
+  return this->Nearest(x, std::numeric_limits<double>::infinity());
 }
 } // namespace cbc3d

@@ -3,21 +3,25 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <vector>
 
 namespace cbc3d
 {
 /// Points bucketed on a uniform grid over their bounding box, for nearest-point queries within
-/// a radius. Holds a reference to the points: they must outlive the grid and stay in place.
+/// a radius. Keeps its own copy of the points, in cell order.
 class PointGrid
 {
 public:
   PointGrid(const std::vector<Eigen::Vector3d>& points, double cell);
 
   /// The nearest point within `radius` that `accept(index)` takes; -1 if none. Ties go to the
-  /// lower index, so the answer does not depend on the order of the search. The search widens
-  /// from one cell, doubling, up to `radius`: a large radius costs little where a point is near.
+  /// lower index, so the answer does not depend on the order of the search. The search visits
+  /// shells of cells outwards from x's cell and stops once no unvisited cell can hold a nearer
+  /// point: a large radius costs little where a point is near.
   template <typename Accept>
   int Nearest(const Eigen::Vector3d& x, double radius, const Accept& accept) const;
 
@@ -27,71 +31,120 @@ public:
     return this->Nearest(x, radius, [](int) { return true; });
   }
 
-  /// The nearest point at any distance (the search radius doubles until one is found); -1 only
-  /// when the grid is empty.
+  /// The nearest point at any distance; -1 only when the grid is empty.
   int NearestAny(const Eigen::Vector3d& x) const;
 
 private:
-  // The cell of x along each axis, clamped to the grid (a point outside lies in no cell, so a
-  // clamped range of cells still holds every point within reach).
+  // A query's best point so far and its squared distance.
+  struct Best
+  {
+    int Index;
+    double Distance;
+  };
+
+  // The cell of x along each axis, clamped to the grid (for bucketing the points).
   Eigen::Vector3i CellOf(const Eigen::Vector3d& x) const;
 
-  // The nearest accepted point within `radius`, over every cell of the cube around x.
-  template <typename Accept>
-  int NearestInCube(const Eigen::Vector3d& x, double radius, const Accept& accept) const;
+  // The cell of x along each axis, not clamped: x lies inside it even when outside the grid.
+  Eigen::Matrix<std::int64_t, 3, 1> QueryCellOf(const Eigen::Vector3d& x) const;
 
-  const std::vector<Eigen::Vector3d>& Points;
+  // How far x is from every cell outside the cube of cells centre +- k that lies in the grid
+  // (a lower bound, kept slightly low for rounding); infinite when the cube covers the grid.
+  double OutsideDistance(const Eigen::Vector3d& x, const Eigen::Matrix<std::int64_t, 3, 1>& centre,
+    std::int64_t k) const;
+
+  // Offers the points of cells [x0, x1] of row (y, z) to `best`.
+  template <typename Accept>
+  void ScanRow(const Eigen::Vector3d& x, std::int64_t y, std::int64_t z, std::int64_t x0,
+    std::int64_t x1, const Accept& accept, Best& best) const;
+
+  // Offers the points of the cells at Chebyshev distance k from `centre` to `best`.
+  template <typename Accept>
+  void ScanShell(const Eigen::Vector3d& x, const Eigen::Matrix<std::int64_t, 3, 1>& centre,
+    std::int64_t k, const Accept& accept, Best& best) const;
+
   double Cell;
   Eigen::Vector3d Origin = Eigen::Vector3d::Zero();
   Eigen::Vector3i Size = Eigen::Vector3i::Zero();
   std::vector<int> CellStart; // points of cell c: Sorted[CellStart[c] .. CellStart[c + 1])
   std::vector<int> Sorted;
+  std::vector<Eigen::Vector3d> SortedPoints; // Points[Sorted[s]], in cell order for locality
 };
 
 template <typename Accept>
 int PointGrid::Nearest(const Eigen::Vector3d& x, double radius, const Accept& accept) const
 {
-  // Exact: an accepted point found within r is the nearest, since a nearer one (or an equal
-  // one of lower index) lies within r too.
-  for (double r = this->Cell; r < radius; r *= 2.0)
-  {
-    const int found = this->NearestInCube(x, r, accept);
-    if (found >= 0)
-    {
-      return found;
-    }
-  }
-  return this->NearestInCube(x, radius, accept);
-}
-
-template <typename Accept>
-int PointGrid::NearestInCube(const Eigen::Vector3d& x, double radius, const Accept& accept) const
-{
-  if (this->Sorted.empty())
+  if (this->Sorted.empty() || !(radius >= 0.0))
   {
     return -1;
   }
-  const Eigen::Vector3i lo = this->CellOf(x - Eigen::Vector3d::Constant(radius));
-  const Eigen::Vector3i hi = this->CellOf(x + Eigen::Vector3d::Constant(radius));
-  int best = -1;
-  double bestDistance = radius * radius;
-  for (int k = lo[2]; k <= hi[2]; ++k)
-    for (int j = lo[1]; j <= hi[1]; ++j)
+  // Exact: every point nearer than the best found, or as near with a lower index, lies in a
+  // visited shell, since the unvisited cells are all farther than OutsideDistance.
+  const Eigen::Matrix<std::int64_t, 3, 1> centre = this->QueryCellOf(x);
+  std::int64_t first = 0; // shells nearer than this hold no cell of the grid
+  for (int a = 0; a < 3; ++a)
+  {
+    first = std::max({ first, -centre[a], centre[a] - (this->Size[a] - 1) });
+  }
+  Best best{ -1, radius * radius };
+  for (std::int64_t k = first;; ++k)
+  {
+    this->ScanShell(x, centre, k, accept, best);
+    const double outside = this->OutsideDistance(x, centre, k);
+    if (std::isinf(outside) || outside > radius || (best.Index >= 0 && best.Distance < outside * outside))
     {
-      const std::int64_t row = (std::int64_t(k) * this->Size[1] + j) * this->Size[0];
-      for (int s = this->CellStart[row + lo[0]]; s < this->CellStart[row + hi[0] + 1]; ++s)
+      return best.Index;
+    }
+  }
+}
+
+template <typename Accept>
+void PointGrid::ScanRow(const Eigen::Vector3d& x, std::int64_t y, std::int64_t z, std::int64_t x0,
+  std::int64_t x1, const Accept& accept, Best& best) const
+{
+  const std::int64_t row = (z * this->Size[1] + y) * this->Size[0];
+  for (int s = this->CellStart[row + x0]; s < this->CellStart[row + x1 + 1]; ++s)
+  {
+    const double distance = (this->SortedPoints[s] - x).squaredNorm();
+    const int index = this->Sorted[s];
+    if ((distance < best.Distance || (distance == best.Distance && (best.Index < 0 || index < best.Index))) &&
+      accept(index))
+    {
+      best = Best{ index, distance };
+    }
+  }
+}
+
+template <typename Accept>
+void PointGrid::ScanShell(const Eigen::Vector3d& x, const Eigen::Matrix<std::int64_t, 3, 1>& centre,
+  std::int64_t k, const Accept& accept, Best& best) const
+{
+  Eigen::Matrix<std::int64_t, 3, 1> lo, hi;
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = std::max<std::int64_t>(centre[a] - k, 0);
+    hi[a] = std::min<std::int64_t>(centre[a] + k, this->Size[a] - 1);
+    if (lo[a] > hi[a])
+    {
+      return; // the shell misses the grid
+    }
+  }
+  for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+    for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+    {
+      if (std::abs(z - centre[2]) == k || std::abs(y - centre[1]) == k)
       {
-        const int index = this->Sorted[s];
-        const double distance = (this->Points[index] - x).squaredNorm();
-        if ((distance < bestDistance || (distance == bestDistance && (best < 0 || index < best))) &&
-          accept(index))
+        this->ScanRow(x, y, z, lo[0], hi[0], accept, best); // a face of the shell: the whole row
+        continue;
+      }
+      for (const std::int64_t end : { centre[0] - k, centre[0] + k }) // inside the faces: the ends
+      {
+        if (end >= lo[0] && end <= hi[0])
         {
-          best = index;
-          bestDistance = distance;
+          this->ScanRow(x, y, z, end, end, accept, best);
         }
       }
     }
-  return best;
 }
 } // namespace cbc3d
 
