@@ -51,13 +51,15 @@ std::string OurBytes(vtkUnstructuredGrid* mesh, int threads)
   return bytes;
 }
 
-// VTK's bytes first (they cache the ranges as ours would), then ours on 1 and 2 threads.
+// Ours first on 1 thread, as in cbc3d (the ranges it caches, vectors' L2_NORM_RANGE written as
+// an information key, must be VTK's), then VTK's, then ours on 2 threads.
 void ExpectVtkBytes(vtkUnstructuredGrid* mesh)
 {
+  const std::string first = OurBytes(mesh, 1);
   const std::string expected = VtkBytes(mesh);
   for (int threads : { 1, 2 })
   {
-    const std::string bytes = OurBytes(mesh, threads);
+    const std::string bytes = threads == 1 ? first : OurBytes(mesh, threads);
     ASSERT_EQ(bytes.size(), expected.size()) << threads << " threads";
     const auto first = std::mismatch(bytes.begin(), bytes.end(), expected.begin()).first;
     EXPECT_TRUE(bytes == expected)
@@ -125,7 +127,8 @@ TEST(VtuWriter, SmallGridLikeVtk)
 
 TEST(VtuWriter, ManyBlocksLikeVtk)
 {
-  ExpectVtkBytes(SyntheticGrid(5000, 9000)); // 120000-byte points: 3 blocks and a partial one
+  // 960000-byte points: 29 blocks and a partial one; integer arrays with ranges on threads.
+  ExpectVtkBytes(SyntheticGrid(40000, 40000));
 }
 
 TEST(VtuWriter, WholeBlocksLikeVtk)
