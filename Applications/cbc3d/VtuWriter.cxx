@@ -2,6 +2,8 @@
 
 #include "VtuPayload.h"
 
+#include "cbc3d/Parallel.h"
+
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -19,6 +21,7 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <algorithm>
 #include <locale>
 #include <sstream>
 #include <type_traits>
@@ -50,6 +53,40 @@ const char* WordTypeName(int type)
   }
 }
 
+// min and max of a big integer array on threads: exact in any order (floats are not: NaN, -0),
+// so the same as VTK's GetRange(-1), which takes one thread.
+template <typename T>
+void IntegerRange(const T* values, vtkIdType count, int threads, double range[2])
+{
+  T low = values[0], high = values[0];
+#pragma omp parallel for reduction(min : low) reduction(max : high) num_threads(threads)
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    low = std::min(low, values[i]);
+    high = std::max(high, values[i]);
+  }
+  range[0] = static_cast<double>(low);
+  range[1] = static_cast<double>(high);
+}
+
+// The range vtkXMLWriter writes: VTK's (and cached, as VTK caches it) but for big one-component
+// integer arrays.
+void Range(vtkDataArray* array, int threads, double range[2])
+{
+  const vtkIdType count = array->GetNumberOfValues();
+  if (array->GetNumberOfComponents() == 1 && count >= 32768 && threads > 1)
+  {
+    switch (array->GetDataType())
+    {
+      vtkTemplateMacro(if constexpr (std::is_integral<VTK_TT>::value) {
+        IntegerRange(static_cast<const VTK_TT*>(array->GetVoidPointer(0)), count, threads, range);
+        return;
+      });
+    }
+  }
+  array->GetRange(range, -1);
+}
+
 // Information keys vtkXMLWriter::WriteInformation writes that we do not: we give up on them.
 bool IsUnwrittenKeyVtkWrites(vtkInformationKey* key)
 {
@@ -66,16 +103,17 @@ bool IsUnwrittenKeyVtkWrites(vtkInformationKey* key)
 class VtuDocument
 {
 public:
-  VtuDocument()
+  explicit VtuDocument(int threads)
+    : Threads(cbc3d::ThreadCount(threads))
   {
     this->Text.imbue(std::locale::classic());
     this->Text.precision(11); // vtkXMLWriter's stream precision
   }
   bool Build(vtkUnstructuredGrid* mesh);
-  std::string Join(int threads)
+  std::string Join()
   {
     this->Texts.push_back(this->Text.str());
-    return JoinVtuPayloads(this->Texts, this->Payloads, threads);
+    return JoinVtuPayloads(this->Texts, this->Payloads, this->Threads);
   }
 
 private:
@@ -88,6 +126,7 @@ private:
   void DoubleVector(vtkInformationDoubleVectorKey* key, vtkInformation* info, int indent);
   static std::string NameOf(vtkAbstractArray* array);
 
+  const int Threads;
   std::ostringstream Text;
   std::vector<std::string> Texts;
   std::vector<VtuBytes> Payloads;
@@ -211,9 +250,11 @@ void VtuDocument::Array(vtkAbstractArray* abstract, int indent, const std::strin
       this->Text << " ComponentName" << c << "=\"" << component << "\"";
   if (tuples)
     this->Text << " NumberOfTuples=\"" << array->GetNumberOfTuples() << "\"";
+  double range[2];
+  Range(array, this->Threads, range);
   const vtkNumberToString format;
-  this->Text << " format=\"binary\" RangeMin=\"" << format(array->GetRange(-1)[0])
-             << "\" RangeMax=\"" << format(array->GetRange(-1)[1]) << "\">\n";
+  this->Text << " format=\"binary\" RangeMin=\"" << format(range[0]) << "\" RangeMax=\""
+             << format(range[1]) << "\">\n";
   this->Indent(indent + 2);
   this->Texts.push_back(this->Text.str());
   this->Text.str("");
@@ -267,9 +308,9 @@ void VtuDocument::DoubleVector(vtkInformationDoubleVectorKey* key, vtkInformatio
 
 bool MakeVtuBytes(vtkUnstructuredGrid* mesh, int threads, std::string& bytes)
 {
-  VtuDocument document;
+  VtuDocument document(threads);
   if (!document.Build(mesh))
     return false;
-  bytes = document.Join(threads);
+  bytes = document.Join();
   return true;
 }
