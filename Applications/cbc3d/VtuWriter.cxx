@@ -37,7 +37,7 @@ const char* WordTypeName(int type)
   {
     case VTK_FLOAT: return "Float32";
     case VTK_DOUBLE: return "Float64";
-    case VTK_ID_TYPE: return "Int64"; // with IdType="1"
+    case VTK_ID_TYPE: return sizeof(vtkIdType) == 8 ? "Int64" : nullptr; // with IdType="1"
     case VTK_CHAR: return std::is_signed<char>::value ? "Int8" : "UInt8";
     case VTK_SIGNED_CHAR: return "Int8";
     case VTK_UNSIGNED_CHAR: return "UInt8";
@@ -69,8 +69,8 @@ void IntegerRange(const T* values, vtkIdType count, int threads, double range[2]
   range[1] = static_cast<double>(high);
 }
 
-// The range vtkXMLWriter writes: VTK's (and cached, as VTK caches it) but for big one-component
-// integer arrays.
+// The range vtkXMLWriter writes: VTK's GetRange(-1), which caches it in the array (a vector's
+// L2_NORM_RANGE, written as an information key), but for big one-component integer arrays.
 void Range(vtkDataArray* array, int threads, double range[2])
 {
   const vtkIdType count = array->GetNumberOfValues();
