@@ -2,6 +2,7 @@
 
 #include "CommandLine.h"
 #include "ErrorCapture.h"
+#include "VtuWriter.h"
 
 #include "cbc3d/AtomicFile.h"
 
@@ -52,7 +53,8 @@ vtkSmartPointer<vtkUnstructuredGrid> ForMeshio(vtkUnstructuredGrid* mesh, bool l
 }
 } // namespace
 
-bool WriteMeshFile(vtkUnstructuredGrid* input, const std::string& path, std::string& error)
+bool WriteMeshFile(
+  vtkUnstructuredGrid* input, const std::string& path, int threads, std::string& error)
 {
   const bool legacy = FileExtension(path) == ".vtk";
   const vtkSmartPointer<vtkUnstructuredGrid> mesh = ForMeshio(input, legacy);
@@ -71,8 +73,9 @@ bool WriteMeshFile(vtkUnstructuredGrid* input, const std::string& path, std::str
     if (writer->Write())
       bytes = writer->GetOutputStdString();
   }
-  else
+  else if (!MakeVtuBytes(mesh, threads, bytes))
   {
+    // What our writer does not reproduce byte for byte goes to VTK's.
     // Inline binary, never the default appended mode: VTK 9.2's XML reader cannot read
     // appended files over ~4 KB with Debian 12's libexpat (VTK issue 19258).
     vtkNew<vtkXMLUnstructuredGridWriter> writer;

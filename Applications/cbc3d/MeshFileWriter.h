@@ -8,7 +8,9 @@ class vtkUnstructuredGrid;
 /// Writes .vtu (VTK XML, inline binary, zlib) or .vtk (legacy 4.2, binary), every array but
 /// the field data's text (the stop reasons, which meshio cannot read; the report has them). The file appears
 /// whole or not at all: it is written under a temporary name in the same folder, then renamed.
-bool WriteMeshFile(vtkUnstructuredGrid* mesh, const std::string& path, std::string& error);
+/// .vtu files are VTK's writer's bytes, compressed on `threads` OpenMP threads (0: all).
+bool WriteMeshFile(
+  vtkUnstructuredGrid* mesh, const std::string& path, int threads, std::string& error);
 
 /// Checks that the folder of `path` exists and is writable, with a one-line message if not.
 bool CanWriteBeside(const std::string& path, std::string& error);

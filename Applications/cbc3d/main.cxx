@@ -162,7 +162,7 @@ bool WriteOutputs(
   {
     const std::string extension = FileExtension(output);
     const bool ok = extension == ".vtu" || extension == ".vtk"
-      ? WriteMeshFile(mesh, output, error)
+      ? WriteMeshFile(mesh, output, options.Threads, error)
       : tag() && WriteExport(tagged, output, options.MshVersion == "2.2", error);
     if (!ok)
     {
