@@ -65,14 +65,15 @@ std::vector<Block> SplitBlocks(const std::vector<VtuBytes>& payloads)
   return blocks;
 }
 
-void CompressBlock(Block& block)
+// Compressed in a scratch buffer of the worst case, then kept at its own size: the blocks
+// together stay the size of the compressed data, not of the raw data.
+void CompressBlock(Block& block, std::vector<unsigned char>& scratch)
 {
   uLongf size = compressBound(static_cast<uLong>(block.Size));
-  block.Compressed.resize(size);
-  if (compress2(block.Compressed.data(), &size, block.Data, static_cast<uLong>(block.Size),
-        CompressionLevel) != Z_OK)
+  scratch.resize(size);
+  if (compress2(scratch.data(), &size, block.Data, static_cast<uLong>(block.Size), CompressionLevel) != Z_OK)
     throw std::runtime_error("zlib cannot compress a block");
-  block.Compressed.resize(size);
+  block.Compressed.assign(scratch.begin(), scratch.begin() + size);
 }
 
 // The UInt32 header: block count, block size, last block's size (0 when the data fill whole
@@ -98,7 +99,8 @@ struct Encoded
   std::size_t Position = 0;
 };
 
-std::vector<Encoded> JoinBlocks(const std::vector<VtuBytes>& payloads, const std::vector<Block>& blocks)
+// Each block is freed once joined, so that the compressed data are held once, not twice.
+std::vector<Encoded> JoinBlocks(const std::vector<VtuBytes>& payloads, std::vector<Block>& blocks)
 {
   std::vector<Encoded> encoded(payloads.size());
   std::size_t b = 0;
@@ -113,7 +115,10 @@ std::vector<Encoded> JoinBlocks(const std::vector<VtuBytes>& payloads, const std
     EncodeBase64(header.data(), header.size(), &encoded[p].Header[0]);
     encoded[p].Data.reserve(size);
     for (std::size_t i = first; i < b; ++i)
+    {
       encoded[p].Data.insert(encoded[p].Data.end(), blocks[i].Compressed.begin(), blocks[i].Compressed.end());
+      std::vector<unsigned char>().swap(blocks[i].Compressed);
+    }
   }
   return encoded;
 }
@@ -167,9 +172,13 @@ std::string JoinVtuPayloads(
   threads = cbc3d::ThreadCount(threads);
   std::vector<Block> blocks = SplitBlocks(payloads);
   cbc3d::RegionErrors errors;
-#pragma omp parallel for schedule(dynamic) num_threads(threads)
-  for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks.size()); ++b)
-    errors.Run([&] { CompressBlock(blocks[b]); });
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<unsigned char> scratch;
+#pragma omp for schedule(dynamic)
+    for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks.size()); ++b)
+      errors.Run([&] { CompressBlock(blocks[b], scratch); });
+  }
   errors.Rethrow();
   std::vector<Encoded> encoded = JoinBlocks(payloads, blocks);
   blocks.clear();

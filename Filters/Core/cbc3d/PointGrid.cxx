@@ -7,7 +7,8 @@
 namespace cbc3d
 {
 PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell)
-  : Cell(cell)
+  : Points(points)
+  , Cell(cell)
 {
   if (points.empty())
   {
@@ -45,12 +46,9 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell)
   // Within a cell, points keep ascending order (a stable counting sort).
   std::vector<int> next(this->CellStart.begin(), this->CellStart.end() - 1);
   this->Sorted.resize(points.size());
-  this->SortedPoints.resize(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
   {
-    const int s = next[cellOf[i]]++;
-    this->Sorted[s] = static_cast<int>(i);
-    this->SortedPoints[s] = points[i];
+    this->Sorted[next[cellOf[i]]++] = static_cast<int>(i);
   }
 }
 

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 
 namespace cbc3d
@@ -100,27 +99,9 @@ std::vector<TissueVolumeKeeper::PointPairArea> TissueVolumeKeeper::AreasAtMoving
       }
     }
   }
-  // Sorted by (point, pair): keys with their entries' indices are sorted, not the entries
-  // themselves, which is faster. std::sort moves elements by comparisons alone, so the entries
-  // end in the same order, equal keys too, as sorting them would leave them (and their sums
-  // below are the same to the bit).
-  struct KeyIndex
-  {
-    std::uint64_t Key;
-    std::size_t Index;
-  };
-  std::vector<KeyIndex> keys(areas.size());
-  for (std::size_t i = 0; i < areas.size(); ++i)
-  {
-    keys[i] = { (std::uint64_t(areas[i].Point) << 32) | std::uint32_t(areas[i].Pair), i };
-  }
-  std::sort(keys.begin(), keys.end(), [](const KeyIndex& a, const KeyIndex& b) { return a.Key < b.Key; });
-  std::vector<PointPairArea> sorted(areas.size());
-  for (std::size_t i = 0; i < keys.size(); ++i)
-  {
-    sorted[i] = areas[keys[i].Index];
-  }
-  areas.swap(sorted);
+  std::sort(areas.begin(), areas.end(), [](const PointPairArea& a, const PointPairArea& b) {
+    return a.Point != b.Point ? a.Point < b.Point : a.Pair < b.Pair;
+  });
   // Sum the entries of each (point, pair).
   std::size_t kept = 0;
   for (std::size_t i = 0; i < areas.size(); ++i)
