@@ -181,6 +181,28 @@ RowRun InsideRun(const IndexSpaceTet& tet, const Eigen::Vector3d& rowStart, cons
   return run;
 }
 
+// The voxels first..last of one row, whole (their centres are the samples): each run of one
+// label is added at once, which leaves the counts as adding them one by one would (the same
+// labels in the same order, the same whole sums). Returns the voxels.
+std::int64_t AddVoxelRun(const LabelImage& image, std::int64_t first, std::int64_t last,
+  LabelCounts& counts, std::int32_t owner, std::int32_t* voxelOwner)
+{
+  for (std::int64_t start = first; start <= last;)
+  {
+    const std::int32_t label = image.Labels[start];
+    std::int64_t end = start + 1;
+    while (end <= last && image.Labels[end] == label)
+      ++end;
+    counts.Add(label, VoxelWeight * (end - start));
+    start = end;
+  }
+  if (voxelOwner)
+  {
+    std::fill(voxelOwner + first, voxelOwner + last + 1, owner);
+  }
+  return last - first + 1;
+}
+
 // Samples each voxel at the centres of a subdivision^3 sub-grid; returns the samples taken.
 std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int subdivision,
   LabelCounts& counts, std::int32_t owner, std::int32_t* voxelOwner)
@@ -232,6 +254,12 @@ std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int s
       const int vj = std::clamp(static_cast<int>(std::lround(offset + j * step)), storedFirst[1], storedLast[1]);
       const int vk = std::clamp(static_cast<int>(std::lround(offset + k * step)), storedFirst[2], storedLast[2]);
       const std::int64_t rowVoxels = image.VoxelIndex(storedFirst[0], vj, vk) - storedFirst[0];
+      if (subdivision == 1 && from <= to)
+      {
+        samples += AddVoxelRun(image, rowVoxels + from, rowVoxels + to, counts, owner, voxelOwner);
+        samples += addOutside(run.Last - to);
+        continue;
+      }
       for (std::int64_t i = from; i <= to; ++i)
       {
         const int vi = std::clamp(static_cast<int>(std::lround(offset + i * step)), storedFirst[0], storedLast[0]);
