@@ -2,6 +2,8 @@
 
 #include "cbc3d/Parallel.h"
 
+#include <vtkBase64Utilities.h>
+
 #include <zlib.h>
 
 #include <algorithm>
@@ -22,29 +24,10 @@ std::size_t EncodedSize(std::size_t bytes)
   return (bytes + 2) / 3 * 4;
 }
 
-// Standard base64 with '=' padding, as vtkBase64OutputStream writes it.
+// VTK's base64, as vtkBase64OutputStream writes it ('=' padding, no end mark).
 void EncodeBase64(const unsigned char* in, std::size_t size, char* out)
 {
-  static const char digits[] =
-    "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::size_t i = 0;
-  for (; i + 3 <= size; i += 3, out += 4)
-  {
-    const std::uint32_t v = (in[i] << 16) | (in[i + 1] << 8) | in[i + 2];
-    out[0] = digits[v >> 18];
-    out[1] = digits[(v >> 12) & 63];
-    out[2] = digits[(v >> 6) & 63];
-    out[3] = digits[v & 63];
-  }
-  if (i < size)
-  {
-    const bool two = i + 1 < size;
-    const std::uint32_t v = (in[i] << 16) | (two ? in[i + 1] << 8 : 0);
-    out[0] = digits[v >> 18];
-    out[1] = digits[(v >> 12) & 63];
-    out[2] = two ? digits[(v >> 6) & 63] : '=';
-    out[3] = '=';
-  }
+  vtkBase64Utilities::Encode(in, static_cast<unsigned long>(size), reinterpret_cast<unsigned char*>(out), 0);
 }
 
 // One 32 KiB block of one payload, and where its compressed bytes go.
