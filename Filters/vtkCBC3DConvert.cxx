@@ -8,7 +8,6 @@
 #include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkDoubleArray.h>
-#include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
@@ -264,13 +263,11 @@ void CopyPoints(vtkUnstructuredGrid* grid, std::vector<Eigen::Vector3d>& points)
 {
   vtkDoubleArray* doubles = grid->GetPoints() ? vtkDoubleArray::SafeDownCast(grid->GetPoints()->GetData()) : nullptr;
   const vtkIdType count = static_cast<vtkIdType>(points.size());
-  for (vtkIdType i = 0; i < count; ++i)
-  {
-    if (doubles)
-      points[i] = Eigen::Vector3d(doubles->GetPointer(3 * i));
-    else
+  if (doubles)
+    std::copy_n(doubles->GetPointer(0), 3 * count, points.data()->data());
+  else
+    for (vtkIdType i = 0; i < count; ++i)
       grid->GetPoint(i, points[i].data());
-  }
 }
 
 // The first cell that is not a tetrahedron of 4 points; -1 if none.
