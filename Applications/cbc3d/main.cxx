@@ -3,6 +3,7 @@
 #include "CommandLine.h"
 #include "ErrorCapture.h"
 #include "ExportFileWriter.h"
+#include "HugePages.h"
 #include "ImageFileReader.h"
 #include "MeshFileWriter.h"
 #include "Report.h"
@@ -318,6 +319,7 @@ void KeepFreedMemory()
 
 int main(int argc, char* argv[])
 {
+  RunAgainWithHugePages(argv);
   KeepFreedMemory();
   // A run too large for the machine ends with a message, not an abort; the output, written to
   // a temporary file and renamed only when whole, is not left half-made.
