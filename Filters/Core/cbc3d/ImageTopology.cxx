@@ -54,55 +54,106 @@ std::vector<LabelBox> TissueBoxes(const LabelImage& image)
   return boxes;
 }
 
-// V - E + F of the voxel-face surface of the voxels `inside(voxelIndex)` selects, all of them
-// within [lower, upper]. Corners and edges are flagged on the box's corner grid: an edge is
-// flagged at its lower corner, one flag array per axis.
-template <typename Inside>
-std::int64_t VoxelSurfaceEuler(
-  const LabelImage& image, const std::array<int, 3>& lower, const std::array<int, 3>& upper, Inside inside)
+// Around each voxel corner of one slice: the 4 voxels of slice k that share the corner's edge
+// along z, as bits (1: x - 1, y - 1; 2: x, y - 1; 4: x - 1, y; 8: x, y), 1 where `inside`.
+// Corner (i, j) of the box (from lower - 0 to upper + 1) is at plane index (i - lower + 1,
+// j - lower + 1); voxels beyond the box are outside. A slice beyond the box is all zeros.
+class CornerCodes
 {
-  const auto& d = image.Dimensions;
-  const std::array<std::int64_t, 3> n = { upper[0] - lower[0] + 2, upper[1] - lower[1] + 2,
-    upper[2] - lower[2] + 2 };
-  const std::array<std::int64_t, 3> stride = { 1, n[0], n[0] * n[1] };
-  std::vector<unsigned char> corner(n[0] * n[1] * n[2], 0);
-  std::array<std::vector<unsigned char>, 3> edge;
-  edge.fill(corner);
-  const std::array<std::int64_t, 3> voxelStride = image.VoxelStrides(); // one voxel around a tissue is stored
-  std::int64_t faces = 0;
-  for (int k = lower[2]; k <= upper[2]; ++k)
-    for (int j = lower[1]; j <= upper[1]; ++j)
-      for (int i = lower[0]; i <= upper[0]; ++i)
+public:
+  CornerCodes(const std::array<int, 3>& lower, const std::array<int, 3>& upper)
+    : Lower(lower)
+    , Upper(upper)
+    , Width(upper[0] - lower[0] + 2)
+    , Height(upper[1] - lower[1] + 2)
+    , Voxels(std::size_t(Width + 1) * std::size_t(Height + 1))
+    , Codes(std::size_t(Width) * std::size_t(Height))
+  {
+  }
+  int Width, Height; // corners per row, rows
+  template <typename Inside>
+  const std::vector<unsigned char>& Of(const LabelImage& image, int k, Inside inside)
+  {
+    std::fill(this->Voxels.begin(), this->Voxels.end(), 0);
+    const int row = this->Width + 1;
+    if (k >= this->Lower[2] && k <= this->Upper[2])
+      for (int j = this->Lower[1]; j <= this->Upper[1]; ++j)
       {
-        const std::int64_t voxel = image.VoxelIndex(i, j, k);
-        if (!inside(voxel))
-        {
-          continue;
-        }
-        const std::array<int, 3> at = { i, j, k };
-        const std::int64_t base = (i - lower[0]) + n[0] * ((j - lower[1]) + n[1] * (k - lower[2]));
-        for (int a = 0; a < 3; ++a)
-          for (int side = 0; side < 2; ++side)
-          {
-            const int neighbour = at[a] + (side ? 1 : -1);
-            if (neighbour >= 0 && neighbour < d[a] && inside(voxel + (side ? 1 : -1) * voxelStride[a]))
-            {
-              continue;
-            }
-            // The face across axis a spans the two other axes b and c.
-            ++faces;
-            const int b = (a + 1) % 3, c = (a + 2) % 3;
-            const std::int64_t origin = base + side * stride[a];
-            corner[origin] = corner[origin + stride[b]] = corner[origin + stride[c]] =
-              corner[origin + stride[b] + stride[c]] = 1;
-            edge[b][origin] = edge[b][origin + stride[c]] = 1;
-            edge[c][origin] = edge[c][origin + stride[b]] = 1;
-          }
+        const std::int64_t first = image.VoxelIndex(this->Lower[0], j, k);
+        unsigned char* out = this->Voxels.data() + std::size_t(j - this->Lower[1] + 1) * row + 1;
+        for (int i = 0; i + this->Lower[0] <= this->Upper[0]; ++i)
+          out[i] = inside(first + i) ? 1 : 0;
       }
-  auto flagged = [](const std::vector<unsigned char>& flags) {
-    return static_cast<std::int64_t>(std::count(flags.begin(), flags.end(), 1));
-  };
-  return flagged(corner) - flagged(edge[0]) - flagged(edge[1]) - flagged(edge[2]) + faces;
+    for (int j = 0; j < this->Height; ++j)
+    {
+      const unsigned char* below = this->Voxels.data() + std::size_t(j) * row;
+      const unsigned char* above = below + row;
+      unsigned char* code = this->Codes.data() + std::size_t(j) * this->Width;
+      for (int i = 0; i < this->Width; ++i)
+        code[i] = below[i] | below[i + 1] << 1 | above[i] << 2 | above[i + 1] << 3;
+    }
+    return this->Codes;
+  }
+
+private:
+  std::array<int, 3> Lower, Upper;
+  std::vector<unsigned char> Voxels; // the slice, one voxel of zeros around it
+  std::vector<unsigned char> Codes;
+};
+
+// Whether the voxels of these bits (of a corner code) are neither all inside nor all outside.
+inline bool Mixed(unsigned bits, unsigned all)
+{
+  return bits != 0 && bits != all;
+}
+
+// V - E + F of the corners k in [first, last] of the box: a corner, edge or face is on the
+// voxel-face surface when its voxels (8, 4 or 2) are mixed. Each corner counts itself, its
+// edges towards +x, +y and +z and its faces whose lowest corner it is; every one of them lies
+// among the corner's 8 voxels, so a corner with none mixed counts nothing.
+template <typename Inside>
+std::int64_t SlabEuler(const LabelImage& image, const std::array<int, 3>& lower, const std::array<int, 3>& upper,
+  int first, int last, Inside inside)
+{
+  CornerCodes below(lower, upper), above(lower, upper);
+  std::vector<unsigned char> previous = below.Of(image, first - 1, inside);
+  std::int64_t euler = 0;
+  for (int k = first; k <= last; ++k)
+  {
+    const std::vector<unsigned char>& current = above.Of(image, k, inside);
+    for (std::size_t c = 0; c < current.size(); ++c)
+    {
+      const unsigned q0 = previous[c], q1 = current[c];
+      if ((q0 | q1 << 4) == 0 || (q0 | q1 << 4) == 255)
+        continue;
+      const unsigned edgeX = (q0 >> 1 & 1) | (q0 >> 3 & 1) << 1 | (q1 >> 1 & 1) << 2 | (q1 >> 3 & 1) << 3;
+      const unsigned edgeY = (q0 >> 2) | (q1 >> 2) << 2;
+      euler += 1 - Mixed(edgeX, 15) - Mixed(edgeY, 15) - Mixed(q1, 15);
+      euler += Mixed(q1 >> 2, 3) + Mixed((q1 >> 1 & 1) | (q1 >> 3 & 1) << 1, 3) + Mixed((q0 >> 3) | (q1 >> 3) << 1, 3);
+    }
+    previous = current;
+  }
+  return euler;
+}
+
+// V - E + F of the voxel-face surface of the voxels `inside(voxelIndex)` selects, all of them
+// within [lower, upper]: slabs of corner slices on the threads, summed exactly (integers), so
+// the same for any thread count; no memory beyond a few slices per thread.
+template <typename Inside>
+std::int64_t VoxelSurfaceEuler(const LabelImage& image, const std::array<int, 3>& lower,
+  const std::array<int, 3>& upper, int threads, Inside inside)
+{
+  const int slices = upper[2] - lower[2] + 2; // corner slices lower[2] .. upper[2] + 1
+  const int slabs = std::min(slices, 8 * ThreadCount(threads));
+  std::int64_t euler = 0;
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : euler) num_threads(ThreadCount(threads))
+  for (int slab = 0; slab < slabs; ++slab)
+  {
+    const int first = lower[2] + int(std::int64_t(slices) * slab / slabs);
+    const int last = lower[2] + int(std::int64_t(slices) * (slab + 1) / slabs) - 1;
+    euler += SlabEuler(image, lower, upper, first, last, inside);
+  }
+  return euler;
 }
 
 ImageTopology Measure(const LabelImage& image, bool withWhole, int numberOfThreads)
@@ -122,22 +173,19 @@ ImageTopology Measure(const LabelImage& image, bool withWhole, int numberOfThrea
       whole.Upper[a] = std::max(whole.Upper[a], box.Upper[a]);
     }
   }
-  // One job per tissue, and the whole body last; the jobs share nothing but the image.
+  // One tissue after another, each in parallel; the whole body is the tissue where there is one.
   const std::vector<std::int32_t>& labels = image.Labels;
-  const int jobs = static_cast<int>(boxes.size()) + (withWhole ? 1 : 0);
-  std::vector<std::int64_t> euler(jobs, 0);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(ThreadCount(numberOfThreads))
-  for (int job = 0; job < jobs; ++job)
+  std::vector<std::int64_t> euler;
+  for (const LabelBox& box : boxes)
   {
-    if (job == static_cast<int>(boxes.size()))
-    {
-      euler[job] = VoxelSurfaceEuler(
-        image, whole.Lower, whole.Upper, [&image](std::int64_t v) { return image.IsTissue(image.Labels[v]); });
-      continue;
-    }
-    const LabelBox& box = boxes[job];
-    euler[job] = VoxelSurfaceEuler(
-      image, box.Lower, box.Upper, [&labels, &box](std::int64_t v) { return labels[v] == box.Label; });
+    euler.push_back(VoxelSurfaceEuler(image, box.Lower, box.Upper, numberOfThreads,
+      [&labels, &box](std::int64_t v) { return labels[v] == box.Label; }));
+  }
+  if (withWhole)
+  {
+    euler.push_back(boxes.size() == 1 ? euler[0]
+                                      : VoxelSurfaceEuler(image, whole.Lower, whole.Upper, numberOfThreads,
+                                          [&image](std::int64_t v) { return image.IsTissue(image.Labels[v]); }));
   }
   for (std::size_t i = 0; i < boxes.size(); ++i)
   {

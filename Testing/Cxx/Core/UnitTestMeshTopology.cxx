@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <random>
+#include <set>
 #include <utility>
 
 namespace
@@ -249,4 +252,74 @@ TEST(ImageTopology, BackgroundLabelsAreNotTissue)
   const cbc3d::ImageTopology topology = cbc3d::MeasureImageTopology(image);
   EXPECT_TRUE(topology.TissueSurfaceEuler.empty());
   EXPECT_EQ(topology.WholeSurfaceEuler, 0);
+}
+
+namespace
+{
+// The voxel-face surface's V - E + F counted the long way: every face between a selected voxel
+// and one that is not (or the image's outside), its corners and edges collected in sets.
+std::int64_t EulerByEnumeration(const cbc3d::LabelImage& image, const std::function<bool(std::int32_t)>& selected)
+{
+  const auto& d = image.Dimensions;
+  auto in = [&](int i, int j, int k) {
+    return i >= 0 && j >= 0 && k >= 0 && i < d[0] && j < d[1] && k < d[2] && selected(image.LabelAt(i, j, k));
+  };
+  std::set<std::array<int, 3>> corners;
+  std::set<std::array<int, 4>> edges; // lower corner and axis
+  std::int64_t faces = 0;
+  for (int k = 0; k < d[2]; ++k)
+    for (int j = 0; j < d[1]; ++j)
+      for (int i = 0; i < d[0]; ++i)
+        for (int a = 0; a < 3 && in(i, j, k); ++a)
+          for (const int side : { 0, 1 })
+          {
+            std::array<int, 3> n = { i, j, k };
+            n[a] += side ? 1 : -1;
+            if (in(n[0], n[1], n[2]))
+              continue;
+            ++faces;
+            const int b = (a + 1) % 3, c = (a + 2) % 3;
+            std::array<int, 3> origin = { i, j, k };
+            origin[a] += side;
+            for (const int db : { 0, 1 })
+              for (const int dc : { 0, 1 })
+              {
+                std::array<int, 3> corner = origin;
+                corner[b] += db;
+                corner[c] += dc;
+                corners.insert(corner);
+              }
+            for (const int offset : { 0, 1 })
+            {
+              std::array<int, 3> alongB = origin, alongC = origin;
+              alongB[c] += offset; // the edges along b at c = 0 and 1
+              alongC[b] += offset;
+              edges.insert({ alongB[0], alongB[1], alongB[2], b });
+              edges.insert({ alongC[0], alongC[1], alongC[2], c });
+            }
+          }
+  return std::int64_t(corners.size()) - std::int64_t(edges.size()) + faces;
+}
+} // namespace
+
+TEST(ImageTopology, RandomImagesMatchCountingEveryFace)
+{
+  std::mt19937 random(12345);
+  for (int trial = 0; trial < 60; ++trial)
+  {
+    const std::array<int, 3> dimensions = { 2 + int(random() % 6), 2 + int(random() % 6), 2 + int(random() % 7) };
+    cbc3d::LabelImage image = Voxels(dimensions, {});
+    const int density = 1 + int(random() % 4); // in 5: from sparse specks to nearly solid
+    for (auto& label : image.Labels)
+      label = int(random() % 5) < density ? 1 + int(random() % 3) : 0;
+    const int threads = 1 + trial % 3; // the slabs split differently
+    const cbc3d::ImageTopology topology = cbc3d::MeasureImageTopology(image, threads);
+    for (const auto& [label, euler] : topology.TissueSurfaceEuler)
+    {
+      EXPECT_EQ(euler, EulerByEnumeration(image, [label = label](std::int32_t l) { return l == label; }))
+        << "trial " << trial << ", label " << label;
+    }
+    EXPECT_EQ(topology.WholeSurfaceEuler, EulerByEnumeration(image, [](std::int32_t l) { return l != 0; }))
+      << "trial " << trial;
+  }
 }
