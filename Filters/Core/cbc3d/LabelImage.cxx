@@ -97,41 +97,49 @@ void OrthonormalizeDirection(LabelImage& image)
   image.Direction = svd.matrixU() * svd.matrixV().transpose();
 }
 
+namespace
+{
+// Whether any voxel of the box [from, to] (inclusive, within the stored box) is tissue.
+bool AnyTissue(const LabelImage& image, const std::array<int, 3>& from, const std::array<int, 3>& to)
+{
+  for (int k = from[2]; k <= to[2]; ++k)
+    for (int j = from[1]; j <= to[1]; ++j)
+    {
+      const std::int32_t* row = image.Labels.data() + image.VoxelIndex(from[0], j, k);
+      for (int i = 0; i <= to[0] - from[0]; ++i)
+        if (image.IsTissue(row[i]))
+          return true;
+    }
+  return false;
+}
+} // namespace
+
 bool TissueIndexBounds(const LabelImage& image, std::array<int, 3>& lower,
   std::array<int, 3>& upper)
 {
-  const auto& d = image.Dimensions;
-  const std::array<int, 3> first = image.StoredLower, last = image.StoredUpper();
-  lower = { d[0], d[1], d[2] };
-  upper = { -1, -1, -1 };
-  // Slices in parallel; min and max merge exactly, so the box is the same for any thread count.
-  // Beyond the stored box every voxel is background.
-#pragma omp parallel
+  // Planes from each side of the stored box inwards, z, then y within the z range found, then x
+  // within both: a stored box that fits its tissue closely (one voxel around it) costs a few
+  // planes, not the whole box. Beyond the stored box every voxel is background.
+  lower = image.StoredLower;
+  upper = image.StoredUpper();
+  for (int axis = 2; axis >= 0; --axis)
   {
-    std::array<int, 3> lo = { d[0], d[1], d[2] }, hi = { -1, -1, -1 };
-#pragma omp for schedule(static) nowait
-    for (int k = first[2]; k <= last[2]; ++k)
+    auto plane = [&](int index) {
+      std::array<int, 3> from = lower, to = upper;
+      from[axis] = to[axis] = index;
+      return AnyTissue(image, from, to);
+    };
+    while (lower[axis] <= upper[axis] && !plane(lower[axis]))
+      ++lower[axis];
+    if (lower[axis] > upper[axis])
     {
-      for (int j = first[1]; j <= last[1]; ++j)
-      {
-        const std::int32_t* row = image.Labels.data() + image.VoxelIndex(first[0], j, k);
-        for (int i = first[0]; i <= last[0]; ++i)
-        {
-          if (image.IsTissue(row[i - first[0]]))
-          {
-            lo = { std::min(lo[0], i), std::min(lo[1], j), std::min(lo[2], k) };
-            hi = { std::max(hi[0], i), std::max(hi[1], j), std::max(hi[2], k) };
-          }
-        }
-      }
+      lower = image.Dimensions;
+      upper = { -1, -1, -1 };
+      return false;
     }
-#pragma omp critical
-    for (int a = 0; a < 3; ++a)
-    {
-      lower[a] = std::min(lower[a], lo[a]);
-      upper[a] = std::max(upper[a], hi[a]);
-    }
+    while (!plane(upper[axis]))
+      --upper[axis];
   }
-  return upper[0] >= 0;
+  return true;
 }
 } // namespace cbc3d

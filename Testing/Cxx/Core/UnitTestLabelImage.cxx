@@ -5,7 +5,9 @@
 
 #include "TestImages.h"
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 TEST(LabelImage, IndexAndWorldRoundTripWithReflectedDirection)
 {
@@ -68,4 +70,42 @@ TEST(LabelImage, OrthonormalizeKeepsAReflectionAndMakesItExact)
   EXPECT_LT((image.Direction.transpose() * image.Direction - Eigen::Matrix3d::Identity()).norm(), 1e-15);
   EXPECT_NEAR(image.Direction.determinant(), -1.0, 1e-15);
   EXPECT_NEAR(image.Direction(1, 0), -std::sqrt(0.5), 1e-7);
+}
+
+TEST(LabelImage, TissueBoundsMatchEveryVoxelCheckedInAStoredBox)
+{
+  std::mt19937 random(7);
+  for (int trial = 0; trial < 80; ++trial)
+  {
+    // A stored box somewhere inside a larger image, a few tissue voxels (or none) in it.
+    cbc3d::LabelImage image;
+    image.Dimensions = { 12, 10, 9 };
+    image.StoredLower = { int(random() % 4), int(random() % 4), int(random() % 4) };
+    image.StoredSize = { 2 + int(random() % 7), 2 + int(random() % 6), 2 + int(random() % 5) };
+    image.BackgroundLabels = { 0, 9 };
+    image.Labels.assign(std::size_t(image.StoredSize[0]) * image.StoredSize[1] * image.StoredSize[2], 0);
+    const int tissue = int(random() % 4);
+    for (int n = 0; n < tissue; ++n)
+      image.Labels[random() % image.Labels.size()] = 3;
+    for (int n = 0; n < 5; ++n)
+      image.Labels[random() % image.Labels.size()] = 9; // background, not tissue
+    std::array<int, 3> expectedLower = image.Dimensions, expectedUpper = { -1, -1, -1 };
+    const std::array<int, 3> last = image.StoredUpper();
+    for (int k = image.StoredLower[2]; k <= last[2]; ++k)
+      for (int j = image.StoredLower[1]; j <= last[1]; ++j)
+        for (int i = image.StoredLower[0]; i <= last[0]; ++i)
+          if (image.IsTissue(image.LabelAt(i, j, k)))
+          {
+            const std::array<int, 3> at = { i, j, k };
+            for (int a = 0; a < 3; ++a)
+            {
+              expectedLower[a] = std::min(expectedLower[a], at[a]);
+              expectedUpper[a] = std::max(expectedUpper[a], at[a]);
+            }
+          }
+    std::array<int, 3> lower, upper;
+    EXPECT_EQ(cbc3d::TissueIndexBounds(image, lower, upper), expectedUpper[0] >= 0) << "trial " << trial;
+    EXPECT_EQ(lower, expectedLower) << "trial " << trial;
+    EXPECT_EQ(upper, expectedUpper) << "trial " << trial;
+  }
 }
