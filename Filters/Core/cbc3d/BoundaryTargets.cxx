@@ -60,6 +60,12 @@ Eigen::Vector3d TargetPosition(const LabelImage& image, std::int64_t voxel, Targ
 std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetPattern pattern,
   TargetPlacement placement)
 {
+  return FindBoundaryTargets(image, TissueBoundaryVoxels(image), pattern, placement);
+}
+
+std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, const TissueVoxels& boundary,
+  TargetPattern pattern, TargetPlacement placement)
+{
   const auto& d = image.Dimensions;
   const auto blocked = BlockedOffsets(pattern);
   std::vector<char> allowed(image.Labels.size(), 1);
@@ -73,50 +79,44 @@ std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetP
     const std::int32_t label = image.LabelOf(i, j, k);
     return image.IsTissue(label) ? label : OutsideLabel;
   };
-  for (const std::int32_t tissue : image.TissueLabels())
+  // Ascending labels, each tissue's boundary voxels in x-fastest order: the order of a scan of
+  // the whole image, which the blocking depends on.
+  for (const auto& [tissue, voxels] : boundary)
   {
     std::set<LabelSet> thisTissue;
-    // Beyond the stored box there is no tissue, and one voxel around every tissue voxel is stored.
-    const std::array<int, 3> first = image.StoredLower, last = image.StoredUpper();
-    for (int k = first[2]; k <= last[2]; ++k)
-      for (int j = first[1]; j <= last[1]; ++j)
-        for (int i = first[0]; i <= last[0]; ++i)
+    for (const std::int64_t voxel : voxels)
+    {
+      if (!allowed[voxel])
+      {
+        continue;
+      }
+      const auto [i, j, k] = image.VoxelCoordinates(voxel);
+      LabelSet labels = { tissue };
+      const int faces[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
+      for (const auto& f : faces)
+      {
+        const std::int32_t other = labelOf(i + f[0], j + f[1], k + f[2]);
+        if (std::find(labels.begin(), labels.end(), other) == labels.end())
         {
-          const std::int64_t voxel = image.VoxelIndex(i, j, k);
-          if (image.Labels[voxel] != tissue || !allowed[voxel])
-          {
-            continue;
-          }
-          LabelSet labels = { tissue };
-          const int faces[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
-          for (const auto& f : faces)
-          {
-            const std::int32_t other = labelOf(i + f[0], j + f[1], k + f[2]);
-            if (std::find(labels.begin(), labels.end(), other) == labels.end())
-            {
-              labels.push_back(other);
-            }
-          }
-          if (labels.size() == 1)
-          {
-            continue; // not a boundary voxel
-          }
-          std::sort(labels.begin(), labels.end());
-          if (earlierTissues.count(labels))
-          {
-            continue; // this interface was sampled from an earlier tissue's side
-          }
-          thisTissue.insert(labels);
-          targets.push_back({ TargetPosition(image, voxel, placement), labels });
-          for (const auto& o : blocked)
-          {
-            const int ni = i + o[0], nj = j + o[1], nk = k + o[2];
-            if (ni >= 0 && nj >= 0 && nk >= 0 && ni < d[0] && nj < d[1] && nk < d[2])
-            {
-              allowed[image.VoxelIndex(ni, nj, nk)] = 0;
-            }
-          }
+          labels.push_back(other);
         }
+      }
+      std::sort(labels.begin(), labels.end());
+      if (earlierTissues.count(labels))
+      {
+        continue; // this interface was sampled from an earlier tissue's side
+      }
+      thisTissue.insert(labels);
+      targets.push_back({ TargetPosition(image, voxel, placement), labels });
+      for (const auto& o : blocked)
+      {
+        const int ni = i + o[0], nj = j + o[1], nk = k + o[2];
+        if (image.IsStored(ni, nj, nk))
+        {
+          allowed[image.VoxelIndex(ni, nj, nk)] = 0;
+        }
+      }
+    }
     earlierTissues.insert(thisTissue.begin(), thisTissue.end());
   }
   return targets;

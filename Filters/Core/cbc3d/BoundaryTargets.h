@@ -2,6 +2,7 @@
 #define cbc3d_BoundaryTargets_h
 
 #include "cbc3d/LabelImage.h"
+#include "cbc3d/SurfacePoints.h"
 
 #include <Eigen/Core>
 
@@ -57,6 +58,11 @@ Eigen::Vector3d TargetPosition(const LabelImage& image, std::int64_t voxel, Targ
 /// pattern are not taken. Each sits at TargetPosition.
 std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetPattern pattern,
   TargetPlacement placement = TargetPlacement::VoxelCentre);
+
+/// The same from the tissues' boundary voxels, found already (TissueBoundaryVoxels): only
+/// those voxels are looked at.
+std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, const TissueVoxels& boundary,
+  TargetPattern pattern, TargetPlacement placement);
 } // namespace cbc3d
 
 #endif

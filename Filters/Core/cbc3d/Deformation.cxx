@@ -6,6 +6,7 @@
 #include "cbc3d/Matcher.h"
 #include "cbc3d/Parallel.h"
 #include "cbc3d/Quality.h"
+#include "cbc3d/SurfacePoints.h"
 #include "cbc3d/SurfaceSources.h"
 #include "cbc3d/TetGeometry.h"
 #include "cbc3d/TissueVolumes.h"
@@ -430,7 +431,9 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   {
     return Status::Aborted();
   }
-  const std::vector<BoundaryTarget> targets = FindBoundaryTargets(image, params.Pattern, params.Placement);
+  // The tissues' boundary voxels, found once for the targets and the fidelity guard.
+  const TissueVoxels boundary = TissueBoundaryVoxels(image, threads);
+  const std::vector<BoundaryTarget> targets = FindBoundaryTargets(image, boundary, params.Pattern, params.Placement);
   if (stops.Stopped(0.04))
   {
     return Status::Aborted();
@@ -445,7 +448,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   const Matcher matcher(sources, targets, threads);
   // Boundary voxels are dense: a grid of about a voxel per cell keeps each query short
   // (measured on the brain: 3% fewer instructions in all than cells of two voxels).
-  FidelityGuard fidelity(image, mesh, faces, image.Spacing.maxCoeff(), threads, stops.KeepGoing);
+  FidelityGuard fidelity(image, boundary, mesh, faces, image.Spacing.maxCoeff(), threads, stops.KeepGoing);
   if (stops.Stopped(0.07))
   {
     return Status::Aborted();

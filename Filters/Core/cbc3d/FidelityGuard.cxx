@@ -7,17 +7,16 @@
 
 namespace cbc3d
 {
-FidelityGuard::FidelityGuard(const LabelImage& image, const TetMesh& mesh, const std::vector<MeshFace>& faces,
-  double cell, int threads, const std::function<bool()>& keepGoing)
+FidelityGuard::FidelityGuard(const LabelImage& image, const TissueVoxels& boundary, const TetMesh& mesh,
+  const std::vector<MeshFace>& faces, double cell, int threads, const std::function<bool()>& keepGoing)
   : Cell(cell)
   , Threads(threads)
 {
   const auto vertices = TissueSurfaceVertices(mesh, faces);
-  const auto voxels = TissueBoundaryVoxels(image, threads);
   for (const auto& [label, ids] : vertices)
   {
-    const auto found = voxels.find(label);
-    if (found != voxels.end())
+    const auto found = boundary.find(label);
+    if (found != boundary.end())
     {
       Tissue tissue{ label, ids };
       for (const std::int64_t voxel : found->second)

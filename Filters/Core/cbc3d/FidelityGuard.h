@@ -4,6 +4,7 @@
 #include "cbc3d/LabelImage.h"
 #include "cbc3d/MeshFaces.h"
 #include "cbc3d/PointGrid.h"
+#include "cbc3d/SurfacePoints.h"
 #include "cbc3d/TetMesh.h"
 
 #include <Eigen/Core>
@@ -24,8 +25,9 @@ public:
   /// Measures every tissue's distance, asking `keepGoing` before each; when it says stop, the
   /// guard is left unfinished.
   /// `faces` are the mesh's (FindMeshFaces, or SurfaceFaces: faces inside a tissue are ignored).
-  FidelityGuard(const LabelImage& image, const TetMesh& mesh, const std::vector<MeshFace>& faces, double cell,
-    int threads, const std::function<bool()>& keepGoing);
+  /// `boundary` are the image's TissueBoundaryVoxels.
+  FidelityGuard(const LabelImage& image, const TissueVoxels& boundary, const TetMesh& mesh,
+    const std::vector<MeshFace>& faces, double cell, int threads, const std::function<bool()>& keepGoing);
 
   /// Holds back (share 0) the vertices whose step from the accepted positions to `trial` would
   /// push a tissue's Hausdorff distance past its current value: vertices that would end farther

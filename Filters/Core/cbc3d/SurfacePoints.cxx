@@ -52,8 +52,7 @@ std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(
   return result;
 }
 
-std::map<std::int32_t, std::vector<std::int64_t>> TissueBoundaryVoxels(
-  const LabelImage& image, int numberOfThreads)
+TissueVoxels TissueBoundaryVoxels(const LabelImage& image, int numberOfThreads)
 {
   const auto& d = image.Dimensions;
   // Beyond the stored box there is no tissue, and one voxel around every tissue voxel is stored.
@@ -83,7 +82,7 @@ std::map<std::int32_t, std::vector<std::int64_t>> TissueBoundaryVoxels(
       }
     }
   }
-  std::map<std::int32_t, std::vector<std::int64_t>> result;
+  TissueVoxels result;
   for (const auto& slice : perSlice)
   {
     for (const auto& [label, voxel] : slice)

@@ -24,11 +24,13 @@ std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(const TetMesh
 std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(
   const TetMesh& mesh, const std::vector<MeshFace>& faces);
 
+/// Per tissue label, voxel indices (LabelImage::VoxelIndex), ascending.
+using TissueVoxels = std::map<std::int32_t, std::vector<std::int64_t>>;
+
 /// Per tissue label, the indices of the tissue's boundary voxels: voxels of the tissue with a
 /// face-neighbour (6-neighbour) outside it, the image border counting as outside. Ascending,
 /// the same for any thread count.
-std::map<std::int32_t, std::vector<std::int64_t>> TissueBoundaryVoxels(
-  const LabelImage& image, int numberOfThreads = 0);
+TissueVoxels TissueBoundaryVoxels(const LabelImage& image, int numberOfThreads = 0);
 
 /// The world-space centres of TissueBoundaryVoxels, in the same order.
 std::map<std::int32_t, std::vector<Eigen::Vector3d>> TissueBoundaryVoxelCentres(
