@@ -367,7 +367,7 @@ int vtkCBC3DMeshQuality::RequestData(
   vtkNew<vtkFieldData> fields;
   fields->DeepCopy(input->GetFieldData());
   AddOverallFields(fields, summary.Overall);
-  const auto imageVolumes = withImage ? cbc3d::TissueImageVolumes(*image) : std::map<std::int32_t, double>();
+  const auto imageVolumes = withImage ? cbc3d::TissueImageVolumes(*image, this->NumberOfThreads) : std::map<std::int32_t, double>();
   AddTissueFields(fields, rows, cbc3d::TissueMeshVolumes(mesh), withImage ? &imageVolumes : nullptr,
     withImage ? image->Codes : meshCodes);
   std::vector<std::int32_t> tissueLabels;

@@ -469,7 +469,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   if (params.KeepVolumes && result.Iterations > 0)
   {
     // Half a voxel per round at most: the shortfalls left are well under a voxel deep.
-    const TissueVolumeKeeper volumes(mesh, faces, TissueImageVolumes(image), 0.5 * image.Spacing.minCoeff());
+    const TissueVolumeKeeper volumes(mesh, faces, TissueImageVolumes(image, threads), 0.5 * image.Spacing.minCoeff());
     if (RestoreTissueVolumes(volumes, mesh, sources.Points, x, bound, threads, fidelity, stops.KeepGoing) ==
       StepOutcome::Aborted)
     {

@@ -78,15 +78,36 @@ std::map<std::int32_t, double> TissueMeshVolumes(const TetMesh& mesh)
   return volumes;
 }
 
-std::map<std::int32_t, double> TissueImageVolumes(const LabelImage& image)
+std::map<std::int32_t, double> TissueImageVolumes(const LabelImage& image, int numberOfThreads)
 {
   std::map<std::int32_t, std::int64_t> counts;
-  for (const std::int32_t label : image.Labels)
+  const std::int64_t voxels = static_cast<std::int64_t>(image.Labels.size());
+#pragma omp parallel num_threads(ThreadCount(numberOfThreads))
   {
-    if (image.IsTissue(label))
+    // Runs of one label are counted at once: one map update per run, not per voxel.
+    std::map<std::int32_t, std::int64_t> local;
+    std::int32_t label = 0;
+    std::int64_t run = 0;
+    auto flush = [&] {
+      if (run > 0 && image.IsTissue(label))
+        local[label] += run;
+    };
+#pragma omp for schedule(static) nowait
+    for (std::int64_t v = 0; v < voxels; ++v)
     {
-      ++counts[label];
+      if (run > 0 && image.Labels[v] == label)
+      {
+        ++run;
+        continue;
+      }
+      flush();
+      label = image.Labels[v];
+      run = 1;
     }
+    flush();
+#pragma omp critical
+    for (const auto& [tissue, count] : local)
+      counts[tissue] += count;
   }
   const double voxelVolume = image.Spacing.prod();
   std::map<std::int32_t, double> volumes;

@@ -49,8 +49,9 @@ QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads = 0,
 /// order so that it is the same on every run.
 std::map<std::int32_t, double> TissueMeshVolumes(const TetMesh& mesh);
 
-/// Each tissue's volume in the image: its voxel count times the voxel volume (mm^3).
-std::map<std::int32_t, double> TissueImageVolumes(const LabelImage& image);
+/// Each tissue's volume in the image: its voxel count times the voxel volume (mm^3). Counted on
+/// `numberOfThreads` threads (0 = all cores); whole numbers, so the same for any count.
+std::map<std::int32_t, double> TissueImageVolumes(const LabelImage& image, int numberOfThreads = 0);
 } // namespace cbc3d
 
 #endif

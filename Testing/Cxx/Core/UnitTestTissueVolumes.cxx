@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 using cbc3d::testing::KuhnGrid;
 
@@ -107,4 +108,30 @@ TEST(TissueVolumes, OffsetsAreBoundedAndFreeTissuesAreLeftAlone)
   goals = mesh.Points;
   EXPECT_EQ(free.OffsetGoals(goals, std::vector<char>(goals.size(), 1)), 0.0);
   EXPECT_EQ(goals, mesh.Points);
+}
+
+TEST(TissueVolumes, ImageVolumesCountEveryTissueVoxelOnAnyThreads)
+{
+  // Runs of one label cut at every place: labels change often, and the threads' chunks end
+  // inside runs.
+  cbc3d::LabelImage image;
+  image.Dimensions = { 7, 5, 3 };
+  image.Spacing = Eigen::Vector3d(0.5, 2.0, 3.0); // 3 mm^3 a voxel
+  image.BackgroundLabels = { 0, 5 };
+  const int pattern[] = { 1, 1, 1, 0, 2, 2, 5, 5, 1, 7, 7, 7, 7, 0 };
+  std::map<std::int32_t, std::int64_t> expected;
+  for (int v = 0; v < 105; ++v)
+  {
+    const std::int32_t label = pattern[(v * v + 3 * v) % 14];
+    image.Labels.push_back(label);
+    if (label != 0 && label != 5)
+      ++expected[label];
+  }
+  for (const int threads : { 1, 2, 3, 8 })
+  {
+    const std::map<std::int32_t, double> volumes = cbc3d::TissueImageVolumes(image, threads);
+    ASSERT_EQ(volumes.size(), expected.size()) << threads << " threads";
+    for (const auto& [label, count] : expected)
+      EXPECT_EQ(volumes.at(label), 3.0 * double(count)) << "label " << label << ", " << threads << " threads";
+  }
 }
