@@ -1,5 +1,6 @@
 #include "HugePages.h"
 
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <string>
@@ -10,11 +11,19 @@
 // image's. With huge pages (2 MiB, where the kernel allows them for memory that asks: its
 // default "madvise" mode) the faults drop 7 to 60 times. Where the kernel gives none, nothing
 // changes.
-void RunAgainWithHugePages(char* argv[])
+namespace
+{
+// The signals RunAgainWithHugePages blocked, for the process it runs: "2,15,1".
+constexpr const char* HeldVariable = "CBC3D_HELD_SIGNALS";
+} // namespace
+
+void RunAgainWithHugePages(char* argv[], const std::vector<int>& held)
 {
   constexpr const char* Tunable = "glibc.malloc.hugetlb";
-  const char* current = std::getenv("GLIBC_TUNABLES");
-  if (current && std::strstr(current, Tunable))
+  const char* found = std::getenv("GLIBC_TUNABLES");
+  const bool had = found != nullptr;
+  const std::string current = had ? found : "";
+  if (had && current.find(Tunable) != std::string::npos)
   {
     return; // set by the user (any value, "0" included), or by the first run
   }
@@ -24,16 +33,50 @@ void RunAgainWithHugePages(char* argv[])
   {
     return;
   }
-  std::string value = current && *current ? std::string(current) + ":" : std::string();
+  std::string value = current.empty() ? std::string() : current + ":";
   value += std::string(Tunable) + "=1";
   if (setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0)
   {
     return;
   }
+  sigset_t hold, before;
+  sigemptyset(&hold);
+  for (const int signal : held)
+    sigaddset(&hold, signal);
+  sigprocmask(SIG_BLOCK, &hold, &before);
+  std::string blocked; // only those not blocked already: the new process unblocks them
+  for (const int signal : held)
+    if (!sigismember(&before, signal))
+      blocked += (blocked.empty() ? "" : ",") + std::to_string(signal);
+  setenv(HeldVariable, blocked.c_str(), 1);
   execv("/proc/self/exe", argv);
   // Still here: no /proc, or the exec was refused. Run as we are, without the setting.
-  if (current)
-    setenv("GLIBC_TUNABLES", current, 1);
+  unsetenv(HeldVariable);
+  sigprocmask(SIG_SETMASK, &before, nullptr);
+  if (had)
+    setenv("GLIBC_TUNABLES", current.c_str(), 1);
   else
     unsetenv("GLIBC_TUNABLES");
+}
+
+void ReleaseHeldSignals()
+{
+  const char* held = std::getenv(HeldVariable);
+  if (!held)
+  {
+    return;
+  }
+  sigset_t release;
+  sigemptyset(&release);
+  for (const char* at = held; *at;)
+  {
+    char* end = nullptr;
+    const long signal = std::strtol(at, &end, 10);
+    if (end == at)
+      break;
+    sigaddset(&release, int(signal));
+    at = *end == ',' ? end + 1 : end;
+  }
+  unsetenv(HeldVariable);
+  sigprocmask(SIG_UNBLOCK, &release, nullptr);
 }

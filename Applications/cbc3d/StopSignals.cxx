@@ -58,17 +58,22 @@ void OnTerminate()
 }
 } // namespace
 
+std::vector<int> StopSignalNumbers()
+{
+  return { SIGINT, SIGTERM, SIGHUP };
+}
+
 void InstallStopHandlers()
 {
   struct sigaction action;
   std::memset(&action, 0, sizeof(action));
   action.sa_handler = OnStopSignal;
   sigemptyset(&action.sa_mask);
-  for (const int signal : { SIGINT, SIGTERM, SIGHUP })
+  for (const int signal : StopSignalNumbers())
   {
     sigaddset(&action.sa_mask, signal); // one handler at a time
   }
-  for (const int signal : { SIGINT, SIGTERM, SIGHUP })
+  for (const int signal : StopSignalNumbers())
   {
     sigaction(signal, &action, nullptr);
   }

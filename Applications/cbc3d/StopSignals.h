@@ -1,6 +1,8 @@
 #ifndef cbc3d_StopSignals_h
 #define cbc3d_StopSignals_h
 
+#include <vector>
+
 /// Makes the command end cleanly however it is stopped: SIGINT, SIGTERM and SIGHUP remove every
 /// file of the run (cbc3d::PendingFiles: the temporary files and the outputs already renamed)
 /// and exit with 128 + the signal's number after one line on stderr; SIGXFSZ is ignored, so a
@@ -8,6 +10,9 @@
 /// that reaches std::terminate (one escaping an OpenMP region, where it cannot be caught
 /// outside) gives one line and exit code 1 instead of an abort, the files removed too.
 void InstallStopHandlers();
+
+/// The signals InstallStopHandlers makes end a run cleanly: SIGINT, SIGTERM and SIGHUP.
+std::vector<int> StopSignalNumbers();
 
 /// Removes the run's files (the error path) or forgets them (the run finished).
 void RemoveRunFiles();

@@ -1,8 +1,10 @@
 // A small program for UnitTestHugePages: says each time it starts, runs itself again with huge
-// pages asked of malloc as cbc3d does, then reports the tunables it runs with and the huge pages
-// the kernel gave a 64 MiB block it wrote.
+// pages asked of malloc as cbc3d does (holding SIGUSR1), then reports whether SIGUSR1 came
+// blocked, whether one raised before ReleaseHeldSignals waited for it, the tunables it runs with
+// and the huge pages the kernel gave a 64 MiB block it wrote.
 #include "HugePages.h"
 
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -11,6 +13,20 @@
 
 namespace
 {
+volatile std::sig_atomic_t Caught = 0;
+
+void OnUser1(int)
+{
+  Caught = 1;
+}
+
+bool User1Blocked()
+{
+  sigset_t mask;
+  sigprocmask(SIG_BLOCK, nullptr, &mask);
+  return sigismember(&mask, SIGUSR1) == 1;
+}
+
 // AnonHugePages of this process in kB (-1 where /proc says nothing).
 long AnonHugePagesKiB()
 {
@@ -30,7 +46,14 @@ int main(int, char* argv[])
 {
   std::printf("start\n");
   std::fflush(stdout); // an exec drops what is still buffered
-  RunAgainWithHugePages(argv);
+  RunAgainWithHugePages(argv, { SIGUSR1 });
+  std::printf("usr1_blocked %d\n", int(User1Blocked()));
+  std::signal(SIGUSR1, OnUser1);
+  std::raise(SIGUSR1);
+  std::printf("caught_before_release %d\n", int(Caught));
+  ReleaseHeldSignals();
+  std::printf("caught_after_release %d\nusr1_blocked_after %d\nheld_variable %s\n", int(Caught),
+    int(User1Blocked()), std::getenv("CBC3D_HELD_SIGNALS") ? "set" : "unset");
   const std::size_t bytes = std::size_t(64) << 20;
   char* block = static_cast<char*>(std::malloc(bytes));
   if (!block)

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -14,6 +15,7 @@ struct ProbeRun
   int Starts = 0;
   std::string Tunables;
   long HugeKiB = -1;
+  std::map<std::string, std::string> Said; // the probe's other lines: key -> value
 };
 
 // Runs the probe under `environment` (arguments to env(1)) and reads what it printed.
@@ -36,6 +38,8 @@ ProbeRun RunProbe(const std::string& environment)
       words >> run.Tunables;
     else if (key == "huge_kib")
       words >> run.HugeKiB;
+    else
+      words >> run.Said[key];
   }
   EXPECT_EQ(pclose(pipe), 0) << command;
   return run;
@@ -64,6 +68,24 @@ TEST(HugePages, RunsAgainOnceWithTheTunableSet)
     // 64 MiB written: at least one 2 MiB page where the kernel has any to give.
     EXPECT_GE(run.HugeKiB, 2048) << "kernel mode " << mode;
   }
+}
+
+TEST(HugePages, HoldsStopSignalsUntilTheNewProcessReleasesThem)
+{
+  // A signal sent while the program starts again waits (blocked across the exec) for the new
+  // process's handlers, instead of ending it by default before they are in place.
+  ProbeRun run = RunProbe("-u GLIBC_TUNABLES -u LD_PRELOAD");
+  ASSERT_EQ(run.Starts, 2);
+  EXPECT_EQ(run.Said["usr1_blocked"], "1");
+  EXPECT_EQ(run.Said["caught_before_release"], "0");
+  EXPECT_EQ(run.Said["caught_after_release"], "1");
+  EXPECT_EQ(run.Said["usr1_blocked_after"], "0");
+  EXPECT_EQ(run.Said["held_variable"], "unset");
+  // Not run again: nothing is held, the signal is handled at once.
+  run = RunProbe("-u LD_PRELOAD GLIBC_TUNABLES=glibc.malloc.hugetlb=0");
+  ASSERT_EQ(run.Starts, 1);
+  EXPECT_EQ(run.Said["usr1_blocked"], "0");
+  EXPECT_EQ(run.Said["caught_before_release"], "1");
 }
 
 TEST(HugePages, KeepsTheUsersOtherTunables)
