@@ -54,10 +54,10 @@ std::vector<LabelBox> TissueBoxes(const LabelImage& image)
   return boxes;
 }
 
-// Around each voxel corner of one slice: the 4 voxels of slice k that share the corner's edge
-// along z, as bits (1: x - 1, y - 1; 2: x, y - 1; 4: x - 1, y; 8: x, y), 1 where `inside`.
-// Corner (i, j) of the box (from lower - 0 to upper + 1) is at plane index (i - lower + 1,
-// j - lower + 1); voxels beyond the box are outside. A slice beyond the box is all zeros.
+// Around each voxel corner of one slice k: the 4 voxels of the slice that share the corner's
+// edge along z, as bits (1: x - 1, y - 1; 2: x, y - 1; 4: x - 1, y; 8: x, y), set where
+// `inside`. The corners run from lower to upper + 1 along x and y; voxels beyond the box are
+// outside, and a slice beyond it is all zeros.
 class CornerCodes
 {
 public:
@@ -70,7 +70,7 @@ public:
     , Codes(std::size_t(Width) * std::size_t(Height))
   {
   }
-  int Width, Height; // corners per row, rows
+
   template <typename Inside>
   const std::vector<unsigned char>& Of(const LabelImage& image, int k, Inside inside)
   {
@@ -97,6 +97,7 @@ public:
 
 private:
   std::array<int, 3> Lower, Upper;
+  int Width, Height;                 // corners per row, rows
   std::vector<unsigned char> Voxels; // the slice, one voxel of zeros around it
   std::vector<unsigned char> Codes;
 };
@@ -115,12 +116,13 @@ template <typename Inside>
 std::int64_t SlabEuler(const LabelImage& image, const std::array<int, 3>& lower, const std::array<int, 3>& upper,
   int first, int last, Inside inside)
 {
-  CornerCodes below(lower, upper), above(lower, upper);
-  std::vector<unsigned char> previous = below.Of(image, first - 1, inside);
+  std::array<CornerCodes, 2> slices = { CornerCodes(lower, upper), CornerCodes(lower, upper) };
+  const std::vector<unsigned char>* below = &slices[0].Of(image, first - 1, inside);
   std::int64_t euler = 0;
   for (int k = first; k <= last; ++k)
   {
-    const std::vector<unsigned char>& current = above.Of(image, k, inside);
+    const std::vector<unsigned char>& previous = *below;
+    const std::vector<unsigned char>& current = slices[(k - first + 1) % 2].Of(image, k, inside);
     for (std::size_t c = 0; c < current.size(); ++c)
     {
       const unsigned q0 = previous[c], q1 = current[c];
@@ -131,7 +133,7 @@ std::int64_t SlabEuler(const LabelImage& image, const std::array<int, 3>& lower,
       euler += 1 - Mixed(edgeX, 15) - Mixed(edgeY, 15) - Mixed(q1, 15);
       euler += Mixed(q1 >> 2, 3) + Mixed((q1 >> 1 & 1) | (q1 >> 3 & 1) << 1, 3) + Mixed((q0 >> 3) | (q1 >> 3) << 1, 3);
     }
-    previous = current;
+    below = &current;
   }
   return euler;
 }
