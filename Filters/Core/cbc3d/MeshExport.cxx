@@ -1,7 +1,7 @@
 #include "cbc3d/MeshExport.h"
 
 #include "cbc3d/AbaqusWriter.h"
-#include "cbc3d/ExodusWriter.h"
+#include "cbc3d/BinaryFormats.h"
 #include "cbc3d/FEBioWriter.h"
 #include "cbc3d/GmshWriter.h"
 #include "cbc3d/MeditWriter.h"
@@ -93,7 +93,9 @@ Status WriteExportFile(const TaggedMesh& mesh, const std::string& path, bool gms
       if (extension == ".exo")
       {
         // netCDF writes to a path: the temporary file's, renamed into place once closed.
-        const Status status = WriteExodus(mesh, temporary);
+        std::string why;
+        const BinaryFormatWriters* writers = LoadBinaryFormatWriters(why);
+        const Status status = writers ? writers->WriteExodus(mesh, temporary) : Status::Error(why);
         if (!status.IsOk())
           message = "cannot write '" + path + "': " + status.GetMessage();
         return status.IsOk();

@@ -157,15 +157,4 @@ int FindSurface(const TaggedMesh& mesh, const std::array<std::int32_t, 2>& sides
   }
   return -1;
 }
-
-std::vector<std::size_t> TetsPerTissue(const TaggedMesh& mesh)
-{
-  std::vector<std::size_t> counts(mesh.Tissues.size(), 0);
-  for (const std::int32_t label : mesh.Labels)
-  {
-    const auto at = std::lower_bound(mesh.Tissues.begin(), mesh.Tissues.end(), label);
-    ++counts[static_cast<std::size_t>(at - mesh.Tissues.begin())];
-  }
-  return counts;
-}
 } // namespace cbc3d

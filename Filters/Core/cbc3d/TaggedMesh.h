@@ -6,6 +6,7 @@
 #include "cbc3d/MeshFaces.h"
 #include "cbc3d/TetMesh.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -79,7 +80,16 @@ Status BuildTaggedMesh(const TetMesh& mesh, const std::vector<MeshFace>& faces, 
 int FindSurface(const TaggedMesh& mesh, const std::array<std::int32_t, 2>& sides);
 
 /// The number of tets per tissue, in the order of Tissues.
-std::vector<std::size_t> TetsPerTissue(const TaggedMesh& mesh);
+inline std::vector<std::size_t> TetsPerTissue(const TaggedMesh& mesh)
+{
+  std::vector<std::size_t> counts(mesh.Tissues.size(), 0);
+  for (const std::int32_t label : mesh.Labels)
+  {
+    const auto at = std::lower_bound(mesh.Tissues.begin(), mesh.Tissues.end(), label);
+    ++counts[static_cast<std::size_t>(at - mesh.Tissues.begin())];
+  }
+  return counts;
+}
 } // namespace cbc3d
 
 #endif
