@@ -1,5 +1,6 @@
 #include "HugePages.h"
 
+#include <cerrno>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -10,53 +11,46 @@
 // a virtual machine: an eighth of the brain's run, and more than a quarter of a 471 M voxel
 // image's. With huge pages (2 MiB, where the kernel allows them for memory that asks: its
 // default "madvise" mode) the faults drop 7 to 60 times. Where the kernel gives none, nothing
-// changes.
+// changes. The cbc3d command is a small launcher (Launcher.cxx) that starts the mesher this
+// way: glibc reads the tunable only at a process's start, and a mesher that ran itself again
+// would load VTK twice.
 namespace
 {
-// The signals RunAgainWithHugePages blocked, for the process it runs: "2,15,1".
+// The signals RunWithHugePages blocked, for the process it runs: "2,15,1".
 constexpr const char* HeldVariable = "CBC3D_HELD_SIGNALS";
 } // namespace
 
-void RunAgainWithHugePages(char* argv[], const std::vector<int>& held)
+void RunWithHugePages(const char* program, char* argv[], const std::vector<int>& held)
 {
   constexpr const char* Tunable = "glibc.malloc.hugetlb";
   const char* found = std::getenv("GLIBC_TUNABLES");
   const bool had = found != nullptr;
   const std::string current = had ? found : "";
-  if (had && current.find(Tunable) != std::string::npos)
+  if (current.find(Tunable) == std::string::npos) // the user's choice stands, "0" included
   {
-    return; // set by the user (any value, "0" included), or by the first run
-  }
-  // Under valgrind the new process would run outside it (valgrind follows no exec by default).
-  const char* preload = std::getenv("LD_PRELOAD");
-  if (preload && std::strstr(preload, "vgpreload"))
-  {
-    return;
-  }
-  std::string value = current.empty() ? std::string() : current + ":";
-  value += std::string(Tunable) + "=1";
-  if (setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0)
-  {
-    return;
+    std::string value = current.empty() ? std::string() : current + ":";
+    value += std::string(Tunable) + "=1";
+    setenv("GLIBC_TUNABLES", value.c_str(), 1);
   }
   sigset_t hold, before;
   sigemptyset(&hold);
   for (const int signal : held)
     sigaddset(&hold, signal);
   sigprocmask(SIG_BLOCK, &hold, &before);
-  std::string blocked; // only those not blocked already: the new process unblocks them
+  std::string blocked; // only those not blocked already: the new program unblocks them
   for (const int signal : held)
     if (!sigismember(&before, signal))
       blocked += (blocked.empty() ? "" : ",") + std::to_string(signal);
   setenv(HeldVariable, blocked.c_str(), 1);
-  execv("/proc/self/exe", argv);
-  // Still here: no /proc, or the exec was refused. Run as we are, without the setting.
+  execv(program, argv);
+  const int failure = errno;
   unsetenv(HeldVariable);
   sigprocmask(SIG_SETMASK, &before, nullptr);
   if (had)
     setenv("GLIBC_TUNABLES", current.c_str(), 1);
   else
     unsetenv("GLIBC_TUNABLES");
+  errno = failure;
 }
 
 void ReleaseHeldSignals()

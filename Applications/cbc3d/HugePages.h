@@ -3,17 +3,18 @@
 
 #include <vector>
 
-/// Runs this program again, once, with glibc's malloc asking the kernel for transparent huge
-/// pages (the tunable glibc.malloc.hugetlb=1; glibc reads tunables only when a process starts).
-/// Returns only when it did not: the tunable was already set (by the user, or by this call
-/// in the process it replaced), or the program could not be run again. Changes no result.
-/// The `held` signals that arrive while the program starts again are blocked (a blocked
-/// signal stays pending across the exec) until the new process calls ReleaseHeldSignals.
-void RunAgainWithHugePages(char* argv[], const std::vector<int>& held);
+/// Replaces this process with `program` (the same arguments), with glibc's malloc asking the
+/// kernel for transparent huge pages: the tunable glibc.malloc.hugetlb=1 added to
+/// GLIBC_TUNABLES, which glibc reads only when a process starts. Where the user set that
+/// tunable (any value, "0" included) it is left as it is. The `held` signals that arrive while
+/// `program` starts are blocked (a blocked signal stays pending across the exec) until it calls
+/// ReleaseHeldSignals. Returns only when the exec failed, with errno saying why and the
+/// environment and signal mask as they were.
+void RunWithHugePages(const char* program, char* argv[], const std::vector<int>& held);
 
-/// In the process run again, once its own handlers are in place: unblocks the signals
-/// RunAgainWithHugePages held (those it blocked itself), so that one sent meanwhile is handled
-/// now. Does nothing in a process that was not run again.
+/// In the program started by RunWithHugePages, once its own handlers are in place: unblocks the
+/// signals RunWithHugePages held (those it blocked itself), so that one sent meanwhile is
+/// handled now. Does nothing in a process that was not started that way.
 void ReleaseHeldSignals();
 
 #endif

@@ -58,11 +58,6 @@ void OnTerminate()
 }
 } // namespace
 
-std::vector<int> StopSignalNumbers()
-{
-  return { SIGINT, SIGTERM, SIGHUP };
-}
-
 void InstallStopHandlers()
 {
   struct sigaction action;

@@ -1,6 +1,7 @@
 #ifndef cbc3d_StopSignals_h
 #define cbc3d_StopSignals_h
 
+#include <csignal>
 #include <vector>
 
 /// Makes the command end cleanly however it is stopped: SIGINT, SIGTERM and SIGHUP remove every
@@ -11,8 +12,12 @@
 /// outside) gives one line and exit code 1 instead of an abort, the files removed too.
 void InstallStopHandlers();
 
-/// The signals InstallStopHandlers makes end a run cleanly: SIGINT, SIGTERM and SIGHUP.
-std::vector<int> StopSignalNumbers();
+/// The signals InstallStopHandlers makes end a run cleanly: SIGINT, SIGTERM and SIGHUP (inline:
+/// the launcher holds them without linking the handlers).
+inline std::vector<int> StopSignalNumbers()
+{
+  return { SIGINT, SIGTERM, SIGHUP };
+}
 
 /// Removes the run's files (the error path) or forgets them (the run finished).
 void RemoveRunFiles();

@@ -319,12 +319,11 @@ void KeepFreedMemory()
 
 int main(int argc, char* argv[])
 {
-  RunAgainWithHugePages(argv, StopSignalNumbers());
   KeepFreedMemory();
   // A run too large for the machine ends with a message, not an abort; the output, written to
   // a temporary file and renamed only when whole, is not left half-made.
   InstallStopHandlers();
-  ReleaseHeldSignals(); // a stop signal sent while the program started again is handled now
+  ReleaseHeldSignals(); // a stop signal sent while the launcher started this program: now
   try
   {
     return Run(argc, argv);

@@ -54,7 +54,9 @@ run_checked("${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${prefix}")
 step("check the installed files")
 set(expected
   bin/cbc3d
+  libexec/cbc3d/cbc3d
   lib/libvtkCBC3DFilters.so
+  lib/libcbc3dBinaryFormats.so
   lib/paraview-5.11/plugins/CBC3D/CBC3D.so
   include/cbc3d/vtkCBC3DFiltersModule.h
   include/cbc3d/vtkCBC3DAlgorithm.h
@@ -99,8 +101,12 @@ endforeach()
 # 3. RPATHs: the installed binaries find the installed library, and the command works.
 find_program(LDD ldd)
 if(LDD)
-  step("ldd on the installed command and plugin")
-  foreach(binary bin/cbc3d lib/paraview-5.11/plugins/CBC3D/CBC3D.so)
+  step("ldd on the installed command, its mesher and the plugin")
+  run_checked("${LDD}" "${prefix}/bin/cbc3d")
+  if(run_output MATCHES "libvtk")
+    message(FATAL_ERROR "the launcher bin/cbc3d loads VTK\n${run_output}")
+  endif()
+  foreach(binary libexec/cbc3d/cbc3d lib/paraview-5.11/plugins/CBC3D/CBC3D.so)
     run_checked("${LDD}" "${prefix}/${binary}")
     if(run_output MATCHES "not found")
       message(FATAL_ERROR "${binary}: unresolved libraries\n${run_output}")
@@ -112,7 +118,15 @@ if(LDD)
     if(NOT resolved STREQUAL "${prefix}/lib/libvtkCBC3DFilters.so")
       message(FATAL_ERROR "${binary} loads ${resolved}, not the installed library")
     endif()
+    # netCDF and HDF5 come only with the writers that need them, loaded when used.
+    if(run_output MATCHES "libnetcdf|libhdf5")
+      message(FATAL_ERROR "${binary} loads netCDF or HDF5 at start\n${run_output}")
+    endif()
   endforeach()
+  run_checked("${LDD}" "${prefix}/lib/libcbc3dBinaryFormats.so")
+  if(run_output MATCHES "not found")
+    message(FATAL_ERROR "libcbc3dBinaryFormats.so: unresolved libraries\n${run_output}")
+  endif()
 endif()
 step("the installed cbc3d meshes Data/ball.vti")
 run_checked("${prefix}/bin/cbc3d" "${SOURCE_DIR}/Data/ball.vti" -o "${WORK_DIR}/ball.vtu"
@@ -120,6 +134,16 @@ run_checked("${prefix}/bin/cbc3d" "${SOURCE_DIR}/Data/ball.vti" -o "${WORK_DIR}/
 if(NOT EXISTS "${WORK_DIR}/ball.vtu")
   message(FATAL_ERROR "the installed cbc3d wrote no ball.vtu")
 endif()
+step("the installed cbc3d writes Exodus II and XDMF (the writers it loads when used)")
+run_checked("${prefix}/bin/cbc3d" "${SOURCE_DIR}/Data/ball.vti" -o "${WORK_DIR}/ball.exo"
+  --bcc-size 2 --quiet)
+run_checked("${prefix}/bin/cbc3d" "${SOURCE_DIR}/Data/ball.vti" -o "${WORK_DIR}/ball.xdmf"
+  --bcc-size 2 --quiet)
+foreach(file ball.exo ball.xdmf ball.h5)
+  if(NOT EXISTS "${WORK_DIR}/${file}")
+    message(FATAL_ERROR "the installed cbc3d wrote no ${file}")
+  endif()
+endforeach()
 
 # 4. The outside project, twice.
 set(generator_args)

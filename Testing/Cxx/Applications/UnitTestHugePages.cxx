@@ -1,8 +1,12 @@
-// cbc3d runs itself again with glibc's malloc asking for transparent huge pages
-// (RunAgainWithHugePages), once, keeping the user's own tunables and choice.
+// cbc3d's launcher starts the mesher with glibc's malloc asking for transparent huge pages
+// (RunWithHugePages), keeping the user's own tunables and choice, and holding stop signals
+// until the mesher's handlers are in place.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <sys/wait.h>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -18,10 +22,12 @@ struct ProbeRun
   std::map<std::string, std::string> Said; // the probe's other lines: key -> value
 };
 
-// Runs the probe under `environment` (arguments to env(1)) and reads what it printed.
-ProbeRun RunProbe(const std::string& environment)
+// Runs the probe under `environment` (arguments to env(1)) with `arguments` and reads what it
+// printed.
+ProbeRun RunProbe(const std::string& environment, const std::string& arguments = "")
 {
-  const std::string command = "env " + environment + " " CBC3D_HUGEPAGES_PROBE " 2>/dev/null";
+  const std::string command =
+    "env " + environment + " " CBC3D_HUGEPAGES_PROBE " " + arguments + " 2>/dev/null";
   ProbeRun run;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe)
@@ -57,9 +63,9 @@ std::string HugePageMode()
 }
 } // namespace
 
-TEST(HugePages, RunsAgainOnceWithTheTunableSet)
+TEST(HugePages, StartsTheProgramWithTheTunableSet)
 {
-  const ProbeRun run = RunProbe("-u GLIBC_TUNABLES -u LD_PRELOAD");
+  const ProbeRun run = RunProbe("-u GLIBC_TUNABLES");
   EXPECT_EQ(run.Starts, 2);
   EXPECT_EQ(run.Tunables, "glibc.malloc.hugetlb=1");
   const std::string mode = HugePageMode();
@@ -70,35 +76,34 @@ TEST(HugePages, RunsAgainOnceWithTheTunableSet)
   }
 }
 
-TEST(HugePages, HoldsStopSignalsUntilTheNewProcessReleasesThem)
+TEST(HugePages, HoldsStopSignalsUntilTheProgramReleasesThem)
 {
-  // A signal sent while the program starts again waits (blocked across the exec) for the new
-  // process's handlers, instead of ending it by default before they are in place.
-  ProbeRun run = RunProbe("-u GLIBC_TUNABLES -u LD_PRELOAD");
-  ASSERT_EQ(run.Starts, 2);
-  EXPECT_EQ(run.Said["usr1_blocked"], "1");
-  EXPECT_EQ(run.Said["caught_before_release"], "0");
-  EXPECT_EQ(run.Said["caught_after_release"], "1");
-  EXPECT_EQ(run.Said["usr1_blocked_after"], "0");
-  EXPECT_EQ(run.Said["held_variable"], "unset");
-  // Not run again: nothing is held, the signal is handled at once.
-  run = RunProbe("-u LD_PRELOAD GLIBC_TUNABLES=glibc.malloc.hugetlb=0");
-  ASSERT_EQ(run.Starts, 1);
-  EXPECT_EQ(run.Said["usr1_blocked"], "0");
-  EXPECT_EQ(run.Said["caught_before_release"], "1");
+  // A signal sent while the program starts waits (blocked across the exec) for the program's
+  // handlers, instead of ending it by default before they are in place; the same where the
+  // user's own tunable is kept.
+  for (const char* environment : { "-u GLIBC_TUNABLES", "GLIBC_TUNABLES=glibc.malloc.hugetlb=0" })
+  {
+    ProbeRun run = RunProbe(environment);
+    ASSERT_EQ(run.Starts, 2) << environment;
+    EXPECT_EQ(run.Said["usr1_blocked"], "1") << environment;
+    EXPECT_EQ(run.Said["caught_before_release"], "0") << environment;
+    EXPECT_EQ(run.Said["caught_after_release"], "1") << environment;
+    EXPECT_EQ(run.Said["usr1_blocked_after"], "0") << environment;
+    EXPECT_EQ(run.Said["held_variable"], "unset") << environment;
+  }
 }
 
 TEST(HugePages, KeepsTheUsersOtherTunables)
 {
-  const ProbeRun run = RunProbe("-u LD_PRELOAD GLIBC_TUNABLES=glibc.malloc.check=0");
+  const ProbeRun run = RunProbe("GLIBC_TUNABLES=glibc.malloc.check=0");
   EXPECT_EQ(run.Starts, 2);
   EXPECT_EQ(run.Tunables, "glibc.malloc.check=0:glibc.malloc.hugetlb=1");
 }
 
 TEST(HugePages, LeavesTheUsersChoiceAlone)
 {
-  const ProbeRun run = RunProbe("-u LD_PRELOAD GLIBC_TUNABLES=glibc.malloc.hugetlb=0");
-  EXPECT_EQ(run.Starts, 1);
+  const ProbeRun run = RunProbe("GLIBC_TUNABLES=glibc.malloc.hugetlb=0");
+  EXPECT_EQ(run.Starts, 2);
   EXPECT_EQ(run.Tunables, "glibc.malloc.hugetlb=0");
   if (HugePageMode() == "madvise")
   {
@@ -106,10 +111,35 @@ TEST(HugePages, LeavesTheUsersChoiceAlone)
   }
 }
 
-TEST(HugePages, StaysUnderValgrind)
+TEST(HugePages, AFailedStartLeavesTheProcessAsItWas)
 {
-  // Valgrind follows no exec by default: the new process would run outside it.
-  const ProbeRun run = RunProbe("-u GLIBC_TUNABLES LD_PRELOAD=/nonexistent/vgpreload_memcheck-amd64-linux.so");
+  ProbeRun run = RunProbe("-u GLIBC_TUNABLES", "missing");
   EXPECT_EQ(run.Starts, 1);
+  EXPECT_EQ(run.Said["enoent"], "1");
   EXPECT_EQ(run.Tunables, "(none)");
+  EXPECT_EQ(run.Said["usr1_blocked"], "0");
+  EXPECT_EQ(run.Said["held_variable"], "unset");
+  run = RunProbe("GLIBC_TUNABLES=glibc.malloc.check=0", "missing");
+  EXPECT_EQ(run.Tunables, "glibc.malloc.check=0");
+}
+
+TEST(Launcher, SaysWhichMesherItCannotStart)
+{
+  // The cbc3d command alone, without the mesher it starts: one line and exit code 1.
+  char folder[] = "/tmp/cbc3d-launcher-XXXXXX";
+  ASSERT_NE(mkdtemp(folder), nullptr);
+  const std::string copy = std::string(folder) + "/cbc3d";
+  ASSERT_EQ(std::system(("cp " CBC3D_CLI " " + copy).c_str()), 0);
+  FILE* pipe = popen((copy + " --version 2>&1").c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string said;
+  char line[4096];
+  while (std::fgets(line, sizeof(line), pipe))
+    said += line;
+  const int status = pclose(pipe);
+  std::system(("rm -rf " + std::string(folder)).c_str());
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1) << status;
+  EXPECT_NE(said.find("cbc3d: error: cannot run the mesher " + std::string(folder)), std::string::npos) << said;
+  EXPECT_NE(said.find("libexec/cbc3d/cbc3d: No such file or directory"), std::string::npos) << said;
+  EXPECT_EQ(std::count(said.begin(), said.end(), '\n'), 1) << said;
 }
