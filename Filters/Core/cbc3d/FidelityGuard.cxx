@@ -7,11 +7,37 @@
 
 namespace cbc3d
 {
+namespace
+{
+// The mean length of the edges of the tissues' surface triangles (0 without any).
+double MeanSurfaceEdge(const TetMesh& mesh, const std::vector<MeshFace>& faces)
+{
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const MeshFace& face : faces)
+  {
+    if (face.TetCount == 1 || (face.TetCount == 2 && mesh.Labels[face.Tets[0]] != mesh.Labels[face.Tets[1]]))
+    {
+      const auto& p = face.Points;
+      sum += (mesh.Points[p[0]] - mesh.Points[p[1]]).norm() + (mesh.Points[p[1]] - mesh.Points[p[2]]).norm() +
+        (mesh.Points[p[2]] - mesh.Points[p[0]]).norm();
+      count += 3;
+    }
+  }
+  return count > 0 ? sum / double(count) : 0.0;
+}
+} // namespace
+
 FidelityGuard::FidelityGuard(const LabelImage& image, const TissueVoxels& boundary, const TetMesh& mesh,
   const std::vector<MeshFace>& faces, double cell, int threads, const std::function<bool()>& keepGoing)
   : Cell(cell)
+  , VertexCell(std::max(cell, MeanSurfaceEdge(mesh, faces)))
   , Threads(threads)
 {
+  // The vertices are sparser than the boundary voxels where the voxels are small (4 times
+  // finer voxels, the same tets: 64 times the cells of one voxel, nearly all empty, to build
+  // at every snapshot and to cross at every search). A cell of about an edge holds a vertex
+  // or a few. The answers are the same for any cell size (PointGrid.h).
   const auto vertices = TissueSurfaceVertices(mesh, faces);
   for (const auto& [label, ids] : vertices)
   {
@@ -33,7 +59,7 @@ FidelityGuard::FidelityGuard(const LabelImage& image, const TissueVoxels& bounda
       return;
     }
     tissue.Grid = std::make_unique<PointGrid>(tissue.Voxels, cell);
-    tissue.Current = std::make_unique<Snapshot>(tissue.Vertices, mesh.Points, cell);
+    tissue.Current = std::make_unique<Snapshot>(tissue.Vertices, mesh.Points, this->VertexCell);
     tissue.Hausdorff = this->Measure(tissue, *tissue.Current);
   }
 }
@@ -59,7 +85,7 @@ std::size_t FidelityGuard::Hold(const std::vector<Eigen::Vector3d>& trial, std::
         hold[v] = 1; // each vertex appears once in a tissue's list
       }
     }
-    const Snapshot after(tissue.Vertices, trial, this->Cell);
+    const Snapshot after(tissue.Vertices, trial, this->VertexCell);
     const Snapshot& current = *tissue.Current;
     const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Voxels.size());
 #pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
@@ -107,7 +133,7 @@ bool FidelityGuard::AcceptIfNoneGrows(const std::vector<Eigen::Vector3d>& points
     {
       return false;
     }
-    snapshots.push_back(std::make_unique<Snapshot>(tissue.Vertices, points, this->Cell));
+    snapshots.push_back(std::make_unique<Snapshot>(tissue.Vertices, points, this->VertexCell));
     measured.push_back(this->Measure(tissue, *snapshots.back()));
     if (measured.back() > tissue.Hausdorff * (1.0 + 1e-12))
     {
@@ -130,7 +156,7 @@ void FidelityGuard::Accept(const std::vector<Eigen::Vector3d>& points, const std
     {
       return;
     }
-    tissue.Current = std::make_unique<Snapshot>(tissue.Vertices, points, this->Cell);
+    tissue.Current = std::make_unique<Snapshot>(tissue.Vertices, points, this->VertexCell);
     tissue.Hausdorff = std::min(tissue.Hausdorff, this->Measure(tissue, *tissue.Current));
   }
 }
@@ -180,15 +206,10 @@ double FidelityGuard::Measure(const Tissue& tissue, Snapshot& at) const
   // the same for any thread count.
   auto farthest = [this](const std::vector<Eigen::Vector3d>& from, const PointGrid& to,
                     const std::vector<Eigen::Vector3d>& toPoints, std::vector<int>& nearest) {
+    nearest = to.NearestAnyOfAll(from, this->Threads);
     double worst = 0.0;
-    const std::int64_t count = static_cast<std::int64_t>(from.size());
-    nearest.resize(count);
-#pragma omp parallel for schedule(dynamic, 256) reduction(max : worst) num_threads(ThreadCount(this->Threads))
-    for (std::int64_t i = 0; i < count; ++i)
-    {
-      nearest[i] = to.NearestAny(from[i]);
+    for (std::size_t i = 0; i < from.size(); ++i)
       worst = std::max(worst, nearest[i] < 0 ? 0.0 : (toPoints[nearest[i]] - from[i]).norm());
-    }
     return worst;
   };
   return std::max(farthest(at.Points, *tissue.Grid, tissue.Voxels, at.NearestVoxel),

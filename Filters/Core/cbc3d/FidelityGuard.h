@@ -25,7 +25,7 @@ public:
   /// Measures every tissue's distance, asking `keepGoing` before each; when it says stop, the
   /// guard is left unfinished.
   /// `faces` are the mesh's (FindMeshFaces, or SurfaceFaces: faces inside a tissue are ignored).
-  /// `boundary` are the image's TissueBoundaryVoxels.
+  /// `boundary` are the image's TissueBoundaryVoxels; `cell` the cell size of the grids over them.
   FidelityGuard(const LabelImage& image, const TissueVoxels& boundary, const TetMesh& mesh,
     const std::vector<MeshFace>& faces, double cell, int threads, const std::function<bool()>& keepGoing);
 
@@ -93,7 +93,8 @@ private:
   // each voxel's nearest vertex and each vertex's nearest voxel in `at` (Steer reads them).
   double Measure(const Tissue& tissue, Snapshot& at) const;
 
-  double Cell;
+  double Cell;       // of the grids over boundary voxels: about a voxel
+  double VertexCell; // of the grids over vertices: at least the mean surface edge
   int Threads;
   std::vector<Tissue> Tissues;
 };

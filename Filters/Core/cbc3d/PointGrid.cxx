@@ -1,5 +1,7 @@
 #include "cbc3d/PointGrid.h"
 
+#include "cbc3d/Parallel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -35,8 +37,7 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell)
   this->CellStart.assign(cells + 1, 0);
   for (std::size_t i = 0; i < points.size(); ++i)
   {
-    const Eigen::Vector3i c = this->CellOf(points[i]);
-    cellOf[i] = (std::int64_t(c[2]) * this->Size[1] + c[1]) * this->Size[0] + c[0];
+    cellOf[i] = this->CellIndex(points[i]);
     ++this->CellStart[cellOf[i] + 1];
   }
   for (std::int64_t c = 0; c < cells; ++c)
@@ -98,5 +99,114 @@ double PointGrid::OutsideDistance(
 int PointGrid::NearestAny(const Eigen::Vector3d& x) const
 {
   return this->Nearest(x, std::numeric_limits<double>::infinity());
+}
+
+std::int64_t PointGrid::CellIndex(const Eigen::Vector3d& x) const
+{
+  const Eigen::Vector3i c = this->CellOf(x);
+  return (std::int64_t(c[2]) * this->Size[1] + c[1]) * this->Size[0] + c[0];
+}
+
+void PointGrid::PointsNear(const Eigen::Vector3d& x, double radius, std::vector<int>& found) const
+{
+  found.clear();
+  Eigen::Matrix<std::int64_t, 3, 1> lo, hi;
+  for (int a = 0; a < 3; ++a)
+  {
+    // One cell more on each side: a point on a cell's face may sit a rounding error over it.
+    lo[a] = std::max<std::int64_t>(
+      0, static_cast<std::int64_t>(std::floor((x[a] - radius - this->Origin[a]) / this->Cell)) - 1);
+    hi[a] = std::min<std::int64_t>(this->Size[a] - 1,
+      static_cast<std::int64_t>(std::floor((x[a] + radius - this->Origin[a]) / this->Cell)) + 1);
+    if (lo[a] > hi[a])
+      return;
+  }
+  const double limit = radius * radius;
+  for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+    for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+    {
+      const std::int64_t row = (z * this->Size[1] + y) * this->Size[0];
+      for (int s = this->CellStart[row + lo[0]]; s < this->CellStart[row + hi[0] + 1]; ++s)
+        if ((this->Points[this->Sorted[s]] - x).squaredNorm() <= limit)
+          found.push_back(this->Sorted[s]);
+    }
+}
+
+void PointGrid::NearestOfGroup(const std::vector<Eigen::Vector3d>& queries, const std::vector<int>& order,
+  std::size_t first, std::size_t last, std::vector<int>& candidates, std::vector<int>& nearest) const
+{
+  Eigen::Vector3d lower = queries[order[first]], upper = lower;
+  for (std::size_t i = first + 1; i < last; ++i)
+  {
+    lower = lower.cwiseMin(queries[order[i]]);
+    upper = upper.cwiseMax(queries[order[i]]);
+  }
+  // Every query x of the box lies within h of its centre c, and the point nearest c is d from
+  // c, so x's nearest is at most d + h from x, and so at most d + 2h from c: the candidates.
+  const Eigen::Vector3d centre = 0.5 * (lower + upper);
+  const double h = 0.5 * (upper - lower).norm();
+  const double d = (this->Points[this->NearestAny(centre)] - centre).norm();
+  const double scale = std::max({ centre.cwiseAbs().maxCoeff(), this->Origin.cwiseAbs().maxCoeff(), d + h });
+  this->PointsNear(centre, d + 2.0 * h + 1e-9 * scale, candidates);
+  for (std::size_t i = first; i < last; ++i)
+  {
+    // As ScanRow compares: the nearest, the lower index on a tie.
+    const Eigen::Vector3d& x = queries[order[i]];
+    Best best{ -1, std::numeric_limits<double>::infinity() };
+    for (const int index : candidates)
+    {
+      const double distance = (this->Points[index] - x).squaredNorm();
+      if (distance < best.Distance || (distance == best.Distance && (best.Index < 0 || index < best.Index)))
+        best = Best{ index, distance };
+    }
+    nearest[order[i]] = best.Index;
+  }
+}
+
+std::vector<int> PointGrid::NearestAnyOfAll(const std::vector<Eigen::Vector3d>& queries, int threads) const
+{
+  const std::int64_t count = static_cast<std::int64_t>(queries.size());
+  std::vector<int> nearest(queries.size(), -1);
+  if (this->Sorted.empty() || count == 0)
+    return nearest;
+  // The queries in cell order (a counting sort on their cells, clamped to the grid).
+  const std::int64_t cells = static_cast<std::int64_t>(this->CellStart.size()) - 1;
+  std::vector<int> start(cells + 1, 0), order(queries.size());
+  std::vector<std::int64_t> cellOf(queries.size());
+  for (std::int64_t i = 0; i < count; ++i)
+  {
+    cellOf[i] = this->CellIndex(queries[i]);
+    ++start[cellOf[i] + 1];
+  }
+  std::vector<std::int64_t> groups; // cells holding queries
+  for (std::int64_t c = 0; c < cells; ++c)
+  {
+    if (start[c + 1] > 0)
+      groups.push_back(c);
+    start[c + 1] += start[c];
+  }
+  if (count < 4 * static_cast<std::int64_t>(groups.size()))
+  {
+    // Too few queries per cell to share a search: one each.
+#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(threads))
+    for (std::int64_t i = 0; i < count; ++i)
+      nearest[i] = this->NearestAny(queries[i]);
+    return nearest;
+  }
+  {
+    std::vector<int> next(start.begin(), start.end() - 1);
+    for (std::int64_t i = 0; i < count; ++i)
+      order[next[cellOf[i]]++] = static_cast<int>(i);
+  }
+  const std::int64_t groupCount = static_cast<std::int64_t>(groups.size());
+#pragma omp parallel num_threads(ThreadCount(threads))
+  {
+    std::vector<int> candidates;
+#pragma omp for schedule(dynamic, 16)
+    for (std::int64_t g = 0; g < groupCount; ++g)
+      this->NearestOfGroup(queries, order, std::size_t(start[groups[g]]), std::size_t(start[groups[g] + 1]),
+        candidates, nearest);
+  }
+  return nearest;
 }
 } // namespace cbc3d

@@ -35,6 +35,12 @@ public:
   /// The nearest point at any distance; -1 only when the grid is empty.
   int NearestAny(const Eigen::Vector3d& x) const;
 
+  /// NearestAny of each of `queries`, on `threads` threads (0: all cores): the same answers.
+  /// Where the queries are much denser than the points (a tissue's boundary voxels against its
+  /// surface vertices, the more so on fine images) they are taken cell by cell: the queries in
+  /// one cell of this grid share one list of the points that can be nearest to any of them.
+  std::vector<int> NearestAnyOfAll(const std::vector<Eigen::Vector3d>& queries, int threads) const;
+
 private:
   // A query's best point so far and its squared distance.
   struct Best
@@ -45,6 +51,16 @@ private:
 
   // The cell of x along each axis, clamped to the grid (for bucketing the points).
   Eigen::Vector3i CellOf(const Eigen::Vector3d& x) const;
+
+  // CellOf as an index into CellStart.
+  std::int64_t CellIndex(const Eigen::Vector3d& x) const;
+
+  // Every point within `radius` of x (a little more, never less), in no particular order.
+  void PointsNear(const Eigen::Vector3d& x, double radius, std::vector<int>& found) const;
+
+  // NearestAny of queries[order[first .. last)], which lie in one cell, into `nearest`.
+  void NearestOfGroup(const std::vector<Eigen::Vector3d>& queries, const std::vector<int>& order,
+    std::size_t first, std::size_t last, std::vector<int>& candidates, std::vector<int>& nearest) const;
 
   // The cell of x along each axis, not clamped: x lies inside it even when outside the grid.
   Eigen::Matrix<std::int64_t, 3, 1> QueryCellOf(const Eigen::Vector3d& x) const;

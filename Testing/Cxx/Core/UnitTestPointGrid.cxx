@@ -103,3 +103,97 @@ TEST(PointGrid, MatchesBruteForceWithTiesFiltersAndFarQueries)
     EXPECT_EQ(grid.NearestAny(Eigen::Vector3d(1e12, -1e12, 3.0)), brute(Eigen::Vector3d(1e12, -1e12, 3.0), 1e300, all));
   }
 }
+
+namespace
+{
+// The nearest by squared distance, the lower index on a tie: NearestAny's rule.
+int BruteNearestAny(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& x)
+{
+  int best = -1;
+  double bestDistance = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+  {
+    const double d = (points[i] - x).squaredNorm();
+    if (best < 0 || d < bestDistance)
+    {
+      best = static_cast<int>(i);
+      bestDistance = d;
+    }
+  }
+  return best;
+}
+
+// NearestAnyOfAll against brute force and against NearestAny, on 1 and 3 threads.
+void ExpectNearestOfAll(const std::vector<Eigen::Vector3d>& points, const std::vector<Eigen::Vector3d>& queries,
+  double cell)
+{
+  const cbc3d::PointGrid grid(points, cell);
+  for (const int threads : { 1, 3 })
+  {
+    const std::vector<int> nearest = grid.NearestAnyOfAll(queries, threads);
+    ASSERT_EQ(nearest.size(), queries.size());
+    for (std::size_t q = 0; q < queries.size(); ++q)
+    {
+      ASSERT_EQ(nearest[q], BruteNearestAny(points, queries[q])) << "query " << q << " threads " << threads;
+      ASSERT_EQ(nearest[q], grid.NearestAny(queries[q])) << "query " << q;
+    }
+  }
+}
+} // namespace
+
+TEST(PointGrid, NearestOfAllDenseQueriesAgainstSparsePoints)
+{
+  // Vertices on a sphere, voxel centres on a finer lattice in a shell around it and some far
+  // off: many queries per cell, answered cell by cell.
+  std::mt19937 random(5);
+  std::normal_distribution<double> normal;
+  std::vector<Eigen::Vector3d> points(400);
+  for (auto& p : points)
+    p = 10.0 * Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized();
+  std::vector<Eigen::Vector3d> queries;
+  for (double x = -12.0; x <= 12.0; x += 0.5)
+    for (double y = -12.0; y <= 12.0; y += 0.5)
+      for (double z = -12.0; z <= 12.0; z += 0.5)
+      {
+        const double r = std::sqrt(x * x + y * y + z * z);
+        if (r > 9.0 && r < 11.0)
+          queries.emplace_back(x, y, z);
+      }
+  queries.emplace_back(100.0, -3.0, 40.0);
+  queries.emplace_back(-250.0, 0.0, 0.0);
+  ASSERT_GT(queries.size(), 4000u);
+  ExpectNearestOfAll(points, queries, 2.5);
+}
+
+TEST(PointGrid, NearestOfAllTiesOnALattice)
+{
+  // Points on an integer lattice, queries on the half-integer one and on the points: many
+  // queries equally far from 2, 4 or 8 points; the lower index must win each time.
+  std::vector<Eigen::Vector3d> points, queries;
+  for (int z = 0; z < 6; ++z)
+    for (int y = 0; y < 6; ++y)
+      for (int x = 5; x >= 0; --x) // indices not in coordinate order
+        points.emplace_back(2.0 * x, 2.0 * y, 2.0 * z);
+  for (int z = -2; z < 24; ++z)
+    for (int y = -2; y < 24; ++y)
+      for (int x = -2; x < 24; ++x)
+        queries.emplace_back(0.5 * x, 0.5 * y, 0.5 * z);
+  ExpectNearestOfAll(points, queries, 2.0);
+  ExpectNearestOfAll(points, queries, 0.7);
+}
+
+TEST(PointGrid, NearestOfAllFewQueriesAndEmptyGrid)
+{
+  std::mt19937 random(9);
+  std::uniform_real_distribution<double> coordinate(-20.0, 20.0);
+  std::vector<Eigen::Vector3d> points(300), queries(50);
+  for (auto& p : points)
+    p = Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
+  for (auto& q : queries)
+    q = Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
+  ExpectNearestOfAll(points, queries, 1.0); // one query per cell or so: searched one by one
+  const std::vector<Eigen::Vector3d> none;
+  const cbc3d::PointGrid empty(none, 1.0);
+  EXPECT_EQ(empty.NearestAnyOfAll(queries, 2), std::vector<int>(queries.size(), -1));
+  EXPECT_TRUE(cbc3d::PointGrid(points, 1.0).NearestAnyOfAll(none, 2).empty());
+}
