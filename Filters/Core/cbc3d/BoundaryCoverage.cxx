@@ -121,12 +121,13 @@ void BoundaryCoverage::FindTissueGaps(const Tissue& tissue, const std::vector<Fa
   const PointGrid vertexGrid(predicted, cell), faceGrid(centroids, cell);
   const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Centres.size());
   std::vector<int> nearestFace(voxelCount, -1);
+  const std::vector<int> nearestVertex = vertexGrid.NearestAnyOfAll(tissue.Centres, this->Threads);
   double largest = 0.0; // a max reduction is exact: the same for any thread count
 #pragma omp parallel for schedule(dynamic, 1024) reduction(max : largest) num_threads(ThreadCount(this->Threads))
   for (std::int64_t i = 0; i < voxelCount; ++i)
   {
     const Eigen::Vector3d& centre = tissue.Centres[i];
-    const double gap = (predicted[vertexGrid.NearestAny(centre)] - centre).norm();
+    const double gap = (predicted[nearestVertex[i]] - centre).norm();
     largest = std::max(largest, gap);
     if (gap > distance)
     {
