@@ -98,7 +98,8 @@ std::shared_ptr<const cbc3d::LabelImage> vtkCBC3DAlgorithm::ReadLabelImage(
   vtkDataArray* labels =
     vtkCBC3DConvert::ChooseLabelArray(this->GetInputArrayInformation(0), input);
   std::string error;
-  auto image = vtkCBC3DLabelImageCache::Get(input, labels, this->BackgroundLabels, otherValues, error);
+  auto image = vtkCBC3DLabelImageCache::Get(
+    input, labels, this->BackgroundLabels, otherValues, error, this->NumberOfThreads);
   if (!image)
   {
     vtkErrorMacro(<< error);

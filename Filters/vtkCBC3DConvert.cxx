@@ -53,12 +53,13 @@ namespace
 // Stores the codes of the box of the voxels that do not hold the first background label, and
 // one voxel around it (the stages read one voxel beyond a tissue voxel), clamped to the image:
 // the rest of the image is that background, so a padded image costs what its box does.
-void StoreLabels(vtkDataArray* labels, const std::vector<vtkTypeInt64>& backgroundLabels, cbc3d::LabelImage& out)
+void StoreLabels(vtkDataArray* labels, const std::vector<vtkTypeInt64>& backgroundLabels, cbc3d::LabelImage& out,
+  int threads)
 {
   const std::array<int, 3>& d = out.Dimensions;
   std::array<int, 3> lower = { 0, 0, 0 }, upper = { d[0] - 1, d[1] - 1, d[2] - 1 };
   if (!backgroundLabels.empty() &&
-    vtkCBC3DLabelValues::OtherValuesBox(labels, d, backgroundLabels.front(), lower, upper))
+    vtkCBC3DLabelValues::OtherValuesBox(labels, d, backgroundLabels.front(), lower, upper, threads))
   {
     for (int a = 0; a < 3; ++a)
     {
@@ -69,13 +70,13 @@ void StoreLabels(vtkDataArray* labels, const std::vector<vtkTypeInt64>& backgrou
   out.StoredLower = lower;
   out.StoredSize = { upper[0] - lower[0] + 1, upper[1] - lower[1] + 1, upper[2] - lower[2] + 1 };
   out.Labels.resize(std::size_t(out.StoredSize[0]) * out.StoredSize[1] * out.StoredSize[2]);
-  vtkCBC3DLabelValues::ToCodes(labels, out.Codes, d, out.StoredLower, out.StoredSize, out.Labels.data());
+  vtkCBC3DLabelValues::ToCodes(labels, out.Codes, d, out.StoredLower, out.StoredSize, out.Labels.data(), threads);
 }
 } // namespace
 
 bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   const std::vector<vtkTypeInt64>& backgroundLabels, cbc3d::LabelImage& out, std::string& error,
-  std::vector<std::int64_t> otherValues)
+  std::vector<std::int64_t> otherValues, int threads)
 {
   if (!image)
   {
@@ -136,7 +137,7 @@ bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
 
   // One table for the image's labels, the background labels and the caller's (a mesh's), so
   // every background label has a code too.
-  if (!vtkCBC3DLabelValues::CollectValues(labels, otherValues, error))
+  if (!vtkCBC3DLabelValues::CollectValues(labels, otherValues, error, threads))
   {
     return false;
   }
@@ -147,7 +148,7 @@ bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   {
     out.Codes.FindCode(backgroundLabels[b], out.BackgroundLabels[b]);
   }
-  StoreLabels(labels, backgroundLabels, out);
+  StoreLabels(labels, backgroundLabels, out, threads);
   const cbc3d::Status valid = cbc3d::ValidateLabelImage(out);
   if (!valid.IsOk())
   {

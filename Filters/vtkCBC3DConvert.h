@@ -46,11 +46,12 @@ vtkDataArray* ChooseLabelArray(vtkInformation* arrayRequest, vtkImageData* image
  * share one table): the values themselves when all fit in 32 bits. Only the box of the voxels
  * that do not hold the first background label, and one voxel around it, is stored
  * (LabelImage::StoredLower, StoredSize). Returns false with a one-line message for a bad
- * array, or when the image is not 3-D or holds no tissue.
+ * array, or when the image is not 3-D or holds no tissue. The image is read on `threads`
+ * threads (0: all cores); the result is the same for any number.
  */
 bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   const std::vector<vtkTypeInt64>& backgroundLabels, cbc3d::LabelImage& out, std::string& error,
-  std::vector<std::int64_t> otherValues = {});
+  std::vector<std::int64_t> otherValues = {}, int threads = 1);
 
 /// Appends the distinct values of the grid's `Label` cell array; false with a one-line message.
 bool MeshLabelValues(vtkUnstructuredGrid* grid, std::vector<std::int64_t>& values, std::string& error);

@@ -47,7 +47,7 @@ namespace vtkCBC3DLabelImageCache
 {
 std::shared_ptr<const cbc3d::LabelImage> Get(vtkImageData* image, vtkDataArray* labels,
   const std::vector<vtkTypeInt64>& backgroundLabels, const std::vector<std::int64_t>& otherValues,
-  std::string& error)
+  std::string& error, int threads)
 {
   Key key;
   if (image && labels)
@@ -61,7 +61,7 @@ std::shared_ptr<const cbc3d::LabelImage> Get(vtkImageData* image, vtkDataArray* 
     Cached.reset(); // stale: let it go before converting, so two images are not held at once
   }
   auto converted = std::make_shared<cbc3d::LabelImage>();
-  if (!vtkCBC3DConvert::ToLabelImage(image, labels, backgroundLabels, *converted, error, otherValues))
+  if (!vtkCBC3DConvert::ToLabelImage(image, labels, backgroundLabels, *converted, error, otherValues, threads))
   {
     return nullptr;
   }

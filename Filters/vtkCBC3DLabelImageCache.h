@@ -33,10 +33,11 @@ namespace vtkCBC3DLabelImageCache
 /// The label image of `image`'s array `labels` with these background labels, its codes able to
 /// stand for `otherValues` too (a mesh's labels): the cached one when nothing changed since it
 /// was converted and its codes cover those values (codes keep the values' order, so any table
-/// that covers them gives the same mesh). Null, with `error` set, for unusable input.
+/// that covers them gives the same mesh). Null, with `error` set, for unusable input. A
+/// conversion reads the image on `threads` threads (0: all cores).
 std::shared_ptr<const cbc3d::LabelImage> Get(vtkImageData* image, vtkDataArray* labels,
   const std::vector<vtkTypeInt64>& backgroundLabels, const std::vector<std::int64_t>& otherValues,
-  std::string& error);
+  std::string& error, int threads = 1);
 }
 
 #endif

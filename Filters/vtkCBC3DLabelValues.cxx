@@ -1,5 +1,7 @@
 #include "vtkCBC3DLabelValues.h"
 
+#include "cbc3d/Parallel.h"
+
 #include <vtkArrayDispatch.h>
 #include <vtkDataArrayRange.h>
 #include <vtkIntArray.h>
@@ -71,44 +73,48 @@ struct Collect
 {
   std::vector<std::int64_t>* Values = nullptr;
   std::string Error;
+  int Threads = 1;
 
   template <typename ArrayT>
   void operator()(ArrayT* array)
   {
     const auto range = vtk::DataArrayValueRange<1>(array);
+    const std::int64_t count = static_cast<std::int64_t>(range.size());
+    if (count == 0)
+    {
+      return;
+    }
+    // The range, and the first value that is not a label (the one the message names, as a
+    // scan in order would find it), on the threads.
     std::int64_t lowest = std::numeric_limits<std::int64_t>::max();
     std::int64_t highest = std::numeric_limits<std::int64_t>::min();
-    for (const auto value : range)
+    std::int64_t firstRefused = count;
+#pragma omp parallel for schedule(static) num_threads(cbc3d::ThreadCount(this->Threads)) \
+  reduction(min : lowest, firstRefused) reduction(max : highest)
+    for (std::int64_t i = 0; i < count; ++i)
     {
       std::int64_t label = 0;
-      if (!ToLabelValue(value, label))
+      if (!ToLabelValue(range[i], label))
       {
-        this->Error = Refusal(value);
-        return;
+        firstRefused = std::min(firstRefused, i);
+        continue;
       }
       lowest = std::min(lowest, label);
       highest = std::max(highest, label);
     }
-    if (range.size() == 0)
+    if (firstRefused < count)
     {
+      this->Error = Refusal(range[firstRefused]);
       return;
     }
-    std::int64_t label = 0;
     if (highest / 2 - lowest / 2 < LongestPresenceTable / 2)
     {
-      std::vector<bool> present(static_cast<std::size_t>(highest - lowest + 1), false);
-      for (const auto value : range)
-      {
-        ToLabelValue(value, label);
-        present[static_cast<std::size_t>(label - lowest)] = true;
-      }
-      for (std::size_t offset = 0; offset < present.size(); ++offset)
-        if (present[offset])
-          this->Values->push_back(lowest + static_cast<std::int64_t>(offset));
+      this->AddPresent(range, lowest, highest);
       return;
     }
     std::vector<std::int64_t> all;
     all.reserve(range.size());
+    std::int64_t label = 0;
     for (const auto value : range)
     {
       ToLabelValue(value, label);
@@ -118,24 +124,64 @@ struct Collect
     all.erase(std::unique(all.begin(), all.end()), all.end());
     this->Values->insert(this->Values->end(), all.begin(), all.end());
   }
+
+  // Appends the values present, in ascending order, through one table of the range per thread.
+  template <typename Range>
+  void AddPresent(const Range& range, std::int64_t lowest, std::int64_t highest)
+  {
+    const std::size_t span = static_cast<std::size_t>(highest - lowest + 1);
+    const std::int64_t count = static_cast<std::int64_t>(range.size());
+    std::vector<char> present(span, 0);
+#pragma omp parallel num_threads(cbc3d::ThreadCount(this->Threads))
+    {
+      std::vector<char> mine(span, 0);
+      std::int64_t label = 0;
+#pragma omp for schedule(static) nowait
+      for (std::int64_t i = 0; i < count; ++i)
+      {
+        ToLabelValue(range[i], label);
+        mine[static_cast<std::size_t>(label - lowest)] = 1;
+      }
+#pragma omp critical
+      for (std::size_t offset = 0; offset < span; ++offset)
+        present[offset] |= mine[offset];
+    }
+    for (std::size_t offset = 0; offset < span; ++offset)
+      if (present[offset])
+        this->Values->push_back(lowest + static_cast<std::int64_t>(offset));
+  }
 };
 
-// The rows of a box of the image, x fastest: the value range of each in turn.
+// The rows of a box of the image, x fastest: the value range of each, on `Threads` threads
+// (`visit` must be safe to call from several at once; it says whether to go on).
 struct BoxRows
 {
   std::array<int, 3> Dimensions, Lower, Size;
+  int Threads = 1;
 
   template <typename ArrayT, typename Visit>
   void ForEach(ArrayT* array, Visit visit) const
   {
-    for (int k = this->Lower[2]; k < this->Lower[2] + this->Size[2]; ++k)
-      for (int j = this->Lower[1]; j < this->Lower[1] + this->Size[1]; ++j)
+    const std::int64_t rows = std::int64_t(this->Size[1]) * this->Size[2];
+    bool going = true;
+#pragma omp parallel for schedule(static) num_threads(cbc3d::ThreadCount(this->Threads))
+    for (std::int64_t r = 0; r < rows; ++r)
+    {
+      bool goOn;
+#pragma omp atomic read
+      goOn = going;
+      if (!goOn)
+        continue;
+      const int j = this->Lower[1] + int(r % this->Size[1]);
+      const int k = this->Lower[2] + int(r / this->Size[1]);
+      const vtkIdType start =
+        this->Lower[0] + vtkIdType(this->Dimensions[0]) * (j + vtkIdType(this->Dimensions[1]) * k);
+      if (!visit(vtk::DataArrayValueRange<1>(array, start, start + this->Size[0]), r, j, k))
       {
-        const vtkIdType start =
-          this->Lower[0] + vtkIdType(this->Dimensions[0]) * (j + vtkIdType(this->Dimensions[1]) * k);
-        if (!visit(vtk::DataArrayValueRange<1>(array, start, start + this->Size[0]), j, k))
-          return;
+#pragma omp atomic write
+        going = false;
       }
+    }
   }
 };
 
@@ -165,16 +211,22 @@ struct Encode
   template <typename ArrayT>
   void operator()(ArrayT* array)
   {
-    std::int32_t* out = this->Out;
     if (!this->Box)
     {
+      std::int32_t* out = this->Out;
       this->Ok = EncodeRange(vtk::DataArrayValueRange<1>(array), *this->Codes, out);
       return;
     }
-    this->Box->ForEach(array, [&](const auto& row, int, int) {
-      this->Ok = EncodeRange(row, *this->Codes, out);
-      return this->Ok;
+    bool ok = true;
+    this->Box->ForEach(array, [&](const auto& row, std::int64_t r, int, int) {
+      std::int32_t* out = this->Out + r * this->Box->Size[0];
+      if (EncodeRange(row, *this->Codes, out))
+        return true;
+#pragma omp atomic write
+      ok = false;
+      return false;
     });
+    this->Ok = ok;
   }
 };
 
@@ -187,9 +239,11 @@ struct FindBox
   template <typename ArrayT>
   void operator()(ArrayT* array)
   {
-    this->Lower = this->Whole.Dimensions;
-    this->Upper = { -1, -1, -1 };
-    this->Whole.ForEach(array, [&](const auto& row, int j, int k) {
+    // Each row's first and last voxel that is not Fill, gathered per row and then combined:
+    // min and max in any order are the same.
+    const std::int64_t rows = std::int64_t(this->Whole.Size[1]) * this->Whole.Size[2];
+    std::vector<std::array<int, 2>> ends(rows, { -1, -1 });
+    this->Whole.ForEach(array, [&](const auto& row, std::int64_t r, int, int) {
       auto isFill = [&](auto value) {
         std::int64_t label = 0;
         return ToLabelValue(value, label) && label == this->Fill;
@@ -201,22 +255,30 @@ struct FindBox
       do
         --end;
       while (isFill(*end));
-      const int last = int(end - row.begin());
-      this->Lower = { std::min(this->Lower[0], int(first - row.begin())), std::min(this->Lower[1], j),
-        std::min(this->Lower[2], k) };
-      this->Upper = { std::max(this->Upper[0], last), std::max(this->Upper[1], j), std::max(this->Upper[2], k) };
+      ends[r] = { int(first - row.begin()), int(end - row.begin()) };
       return true;
     });
+    this->Lower = this->Whole.Dimensions;
+    this->Upper = { -1, -1, -1 };
+    for (std::int64_t r = 0; r < rows; ++r)
+    {
+      if (ends[r][0] < 0)
+        continue;
+      const int j = int(r % this->Whole.Size[1]), k = int(r / this->Whole.Size[1]);
+      this->Lower = { std::min(this->Lower[0], ends[r][0]), std::min(this->Lower[1], j), std::min(this->Lower[2], k) };
+      this->Upper = { std::max(this->Upper[0], ends[r][1]), std::max(this->Upper[1], j), std::max(this->Upper[2], k) };
+    }
   }
 };
 } // namespace
 
 namespace vtkCBC3DLabelValues
 {
-bool CollectValues(vtkDataArray* array, std::vector<std::int64_t>& values, std::string& error)
+bool CollectValues(vtkDataArray* array, std::vector<std::int64_t>& values, std::string& error, int threads)
 {
   Collect collect;
   collect.Values = &values;
+  collect.Threads = threads;
   if (!vtkArrayDispatch::Dispatch::Execute(array, collect))
   {
     collect(array); // arrays the dispatcher does not know, through the generic API
@@ -238,12 +300,12 @@ bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, std::int32_t* 
 }
 
 bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, const std::array<int, 3>& dimensions,
-  const std::array<int, 3>& lower, const std::array<int, 3>& size, std::int32_t* out)
+  const std::array<int, 3>& lower, const std::array<int, 3>& size, std::int32_t* out, int threads)
 {
   Encode encode;
   encode.Codes = &codes;
   encode.Out = out;
-  const BoxRows box{ dimensions, lower, size };
+  const BoxRows box{ dimensions, lower, size, threads };
   encode.Box = &box;
   if (!vtkArrayDispatch::Dispatch::Execute(array, encode))
   {
@@ -253,10 +315,10 @@ bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, const std::arr
 }
 
 bool OtherValuesBox(vtkDataArray* array, const std::array<int, 3>& dimensions, std::int64_t fill,
-  std::array<int, 3>& lower, std::array<int, 3>& upper)
+  std::array<int, 3>& lower, std::array<int, 3>& upper, int threads)
 {
   FindBox find;
-  find.Whole = BoxRows{ dimensions, { 0, 0, 0 }, dimensions };
+  find.Whole = BoxRows{ dimensions, { 0, 0, 0 }, dimensions, threads };
   find.Fill = fill;
   if (!vtkArrayDispatch::Dispatch::Execute(array, find))
   {

@@ -23,13 +23,17 @@ class vtkDataArray;
 
 namespace vtkCBC3DLabelValues
 {
+// Each of these reads the array on `threads` threads (0: all cores), with the same result for
+// any number.
+
 /**
  * Appends the distinct values of a one-component label array to `values`. The array may be of
  * any integer type, or a float type whose values are whole numbers; false with a one-line
  * message for a fraction or a value beyond the 64-bit signed integers (a uint64 above
  * 9223372036854775807).
  */
-bool CollectValues(vtkDataArray* array, std::vector<std::int64_t>& values, std::string& error);
+bool CollectValues(vtkDataArray* array, std::vector<std::int64_t>& values, std::string& error,
+  int threads = 1);
 
 /// Writes the code of each value of the array into `out`; false for a value the codes lack.
 bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, std::int32_t* out);
@@ -41,12 +45,12 @@ bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, std::int32_t* 
  * CollectValues.
  */
 bool OtherValuesBox(vtkDataArray* array, const std::array<int, 3>& dimensions, std::int64_t fill,
-  std::array<int, 3>& lower, std::array<int, 3>& upper);
+  std::array<int, 3>& lower, std::array<int, 3>& upper, int threads = 1);
 
 /// ToCodes over the box of `size` voxels from `lower` of an image of `dimensions`: the codes of
 /// its voxels, x fastest, into `out`.
 bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, const std::array<int, 3>& dimensions,
-  const std::array<int, 3>& lower, const std::array<int, 3>& size, std::int32_t* out);
+  const std::array<int, 3>& lower, const std::array<int, 3>& size, std::int32_t* out, int threads = 1);
 
 /**
  * A label array holding the values of `codes` (`components` per tuple): a vtkIntArray when

@@ -12,41 +12,59 @@ InteriorSmoothing::InteriorSmoothing(const std::vector<Tet>& tets, std::size_t p
 {
 }
 
+namespace
+{
+// How bad a tet is: its largest dihedral |cos|, 2 when it is inverted or flat.
+double Badness(const std::vector<Eigen::Vector3d>& x, const Tet& t)
+{
+  return SignedVolume(x[t[0]], x[t[1]], x[t[2]], x[t[3]]) > 0.0
+    ? LargestDihedralCosine(x[t[0]], x[t[1]], x[t[2]], x[t[3]])
+    : 2.0;
+}
+} // namespace
+
 std::size_t InteriorSmoothing::Smooth(
   std::vector<Eigen::Vector3d>& x, const std::vector<char>& movable, int sweeps) const
 {
-  // The worst tet around p, as the largest dihedral |cos| (2 when one is inverted).
-  auto worst = [&](std::size_t p) {
-    double w = 0.0;
-    for (std::int64_t i = this->Around.Start[p]; i < this->Around.Start[p + 1]; ++i)
-    {
-      const Tet& t = this->Tets[this->Around.Tets[i]];
-      w = std::max(w, SignedVolume(x[t[0]], x[t[1]], x[t[2]], x[t[3]]) > 0.0
-          ? LargestDihedralCosine(x[t[0]], x[t[1]], x[t[2]], x[t[3]])
-          : 2.0);
-    }
-    return w;
+  // Each tet's badness at the current positions, kept as its vertices move: a vertex's worst
+  // before a move is read, not measured again, and a move is given up at the first tet that
+  // would be no better than that worst. The same values as measuring everything each time,
+  // so the same moves.
+  std::vector<double> badness(this->Tets.size(), -1.0); // -1: not measured yet
+  auto known = [&](std::int64_t t) {
+    if (badness[t] < 0.0)
+      badness[t] = Badness(x, this->Tets[t]);
+    return badness[t];
   };
+  std::vector<double> trial;
   std::size_t moves = 0;
   for (int sweep = 0; sweep < sweeps; ++sweep)
   {
     std::size_t moved = 0;
     for (std::size_t p = 0; p + 1 < this->Around.Start.size(); ++p)
     {
-      if (!movable[p] || this->Around.Start[p] == this->Around.Start[p + 1])
+      const std::int64_t begin = this->Around.Start[p], end = this->Around.Start[p + 1];
+      if (!movable[p] || begin == end)
       {
         continue;
       }
       Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-      for (std::int64_t i = this->Around.Start[p]; i < this->Around.Start[p + 1]; ++i)
+      for (std::int64_t i = begin; i < end; ++i)
         for (const PointId q : this->Tets[this->Around.Tets[i]])
           centre += x[q];
-      centre /= 4.0 * double(this->Around.Start[p + 1] - this->Around.Start[p]);
-      const double before = worst(p);
+      centre /= 4.0 * double(end - begin);
+      double before = 0.0;
+      for (std::int64_t i = begin; i < end; ++i)
+        before = std::max(before, known(this->Around.Tets[i]));
       const Eigen::Vector3d kept = x[p];
       x[p] = centre;
-      if (worst(p) < before)
+      trial.clear();
+      for (std::int64_t i = begin; i < end && (trial.empty() || trial.back() < before); ++i)
+        trial.push_back(Badness(x, this->Tets[this->Around.Tets[i]]));
+      if (trial.size() == std::size_t(end - begin) && trial.back() < before)
       {
+        for (std::int64_t i = begin; i < end; ++i)
+          badness[this->Around.Tets[i]] = trial[i - begin];
         ++moved;
       }
       else
