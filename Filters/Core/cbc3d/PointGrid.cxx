@@ -132,81 +132,55 @@ void PointGrid::PointsNear(const Eigen::Vector3d& x, double radius, std::vector<
     }
 }
 
-void PointGrid::NearestOfGroup(const std::vector<Eigen::Vector3d>& queries, const std::vector<int>& order,
-  std::size_t first, std::size_t last, std::vector<int>& candidates, std::vector<int>& nearest) const
-{
-  Eigen::Vector3d lower = queries[order[first]], upper = lower;
-  for (std::size_t i = first + 1; i < last; ++i)
-  {
-    lower = lower.cwiseMin(queries[order[i]]);
-    upper = upper.cwiseMax(queries[order[i]]);
-  }
-  // Every query x of the box lies within h of its centre c, and the point nearest c is d from
-  // c, so x's nearest is at most d + h from x, and so at most d + 2h from c: the candidates.
-  const Eigen::Vector3d centre = 0.5 * (lower + upper);
-  const double h = 0.5 * (upper - lower).norm();
-  const double d = (this->Points[this->NearestAny(centre)] - centre).norm();
-  const double scale = std::max({ centre.cwiseAbs().maxCoeff(), this->Origin.cwiseAbs().maxCoeff(), d + h });
-  this->PointsNear(centre, d + 2.0 * h + 1e-9 * scale, candidates);
-  for (std::size_t i = first; i < last; ++i)
-  {
-    // As ScanRow compares: the nearest, the lower index on a tie.
-    const Eigen::Vector3d& x = queries[order[i]];
-    Best best{ -1, std::numeric_limits<double>::infinity() };
-    for (const int index : candidates)
-    {
-      const double distance = (this->Points[index] - x).squaredNorm();
-      if (distance < best.Distance || (distance == best.Distance && (best.Index < 0 || index < best.Index)))
-        best = Best{ index, distance };
-    }
-    nearest[order[i]] = best.Index;
-  }
-}
-
-std::vector<int> PointGrid::NearestAnyOfAll(const std::vector<Eigen::Vector3d>& queries, int threads) const
+bool PointGrid::GroupByCell(const std::vector<Eigen::Vector3d>& queries, QueryGroups& groups) const
 {
   const std::int64_t count = static_cast<std::int64_t>(queries.size());
-  std::vector<int> nearest(queries.size(), -1);
-  if (this->Sorted.empty() || count == 0)
-    return nearest;
-  // The queries in cell order (a counting sort on their cells, clamped to the grid).
   const std::int64_t cells = static_cast<std::int64_t>(this->CellStart.size()) - 1;
-  std::vector<int> start(cells + 1, 0), order(queries.size());
+  std::vector<int> start(cells + 1, 0);
   std::vector<std::int64_t> cellOf(queries.size());
   for (std::int64_t i = 0; i < count; ++i)
   {
     cellOf[i] = this->CellIndex(queries[i]);
     ++start[cellOf[i] + 1];
   }
-  std::vector<std::int64_t> groups; // cells holding queries
+  groups.Start.assign(1, 0);
   for (std::int64_t c = 0; c < cells; ++c)
   {
     if (start[c + 1] > 0)
-      groups.push_back(c);
+      groups.Start.push_back(start[c] + start[c + 1]);
     start[c + 1] += start[c];
   }
-  if (count < 4 * static_cast<std::int64_t>(groups.size()))
+  if (count < 4 * static_cast<std::int64_t>(groups.Start.size() - 1))
+    return false; // too few queries per cell to share a search
+  groups.Order.resize(queries.size());
+  for (std::int64_t i = 0; i < count; ++i)
+    groups.Order[start[cellOf[i]]++] = static_cast<int>(i);
+  return true;
+}
+
+void PointGrid::GroupCandidates(const std::vector<Eigen::Vector3d>& queries, const QueryGroups& groups,
+  std::int64_t g, double radius, std::vector<int>& candidates) const
+{
+  Eigen::Vector3d lower = queries[groups.Order[groups.Start[g]]], upper = lower;
+  for (int i = groups.Start[g] + 1; i < groups.Start[g + 1]; ++i)
   {
-    // Too few queries per cell to share a search: one each.
-#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(threads))
-    for (std::int64_t i = 0; i < count; ++i)
-      nearest[i] = this->NearestAny(queries[i]);
-    return nearest;
+    lower = lower.cwiseMin(queries[groups.Order[i]]);
+    upper = upper.cwiseMax(queries[groups.Order[i]]);
   }
-  {
-    std::vector<int> next(start.begin(), start.end() - 1);
-    for (std::int64_t i = 0; i < count; ++i)
-      order[next[cellOf[i]]++] = static_cast<int>(i);
-  }
-  const std::int64_t groupCount = static_cast<std::int64_t>(groups.size());
-#pragma omp parallel num_threads(ThreadCount(threads))
-  {
-    std::vector<int> candidates;
-#pragma omp for schedule(dynamic, 16)
-    for (std::int64_t g = 0; g < groupCount; ++g)
-      this->NearestOfGroup(queries, order, std::size_t(start[groups[g]]), std::size_t(start[groups[g] + 1]),
-        candidates, nearest);
-  }
-  return nearest;
+  // Every query of the box lies within h of its centre c. With a radius, a point farther than
+  // radius + h from c is beyond it for all of them. Without one, the point nearest c is d from
+  // c, so each query's nearest is at most d + h from it, and so at most d + 2h from c.
+  const Eigen::Vector3d centre = 0.5 * (lower + upper);
+  const double h = 0.5 * (upper - lower).norm();
+  const double reach = std::isinf(radius) ? (this->Points[this->NearestAny(centre)] - centre).norm() + 2.0 * h
+                                          : radius + h;
+  const double scale = std::max({ centre.cwiseAbs().maxCoeff(), this->Origin.cwiseAbs().maxCoeff(), reach });
+  this->PointsNear(centre, reach + 1e-9 * scale, candidates);
+}
+
+std::vector<int> PointGrid::NearestAnyOfAll(const std::vector<Eigen::Vector3d>& queries, int threads) const
+{
+  return this->NearestOfAll(queries, std::numeric_limits<double>::infinity(),
+    [](std::int64_t, int) { return true; }, threads);
 }
 } // namespace cbc3d

@@ -1,6 +1,8 @@
 #ifndef cbc3d_PointGrid_h
 #define cbc3d_PointGrid_h
 
+#include "cbc3d/Parallel.h"
+
 #include <Eigen/Core>
 
 #include <algorithm>
@@ -35,10 +37,16 @@ public:
   /// The nearest point at any distance; -1 only when the grid is empty.
   int NearestAny(const Eigen::Vector3d& x) const;
 
-  /// NearestAny of each of `queries`, on `threads` threads (0: all cores): the same answers.
-  /// Where the queries are much denser than the points (a tissue's boundary voxels against its
-  /// surface vertices, the more so on fine images) they are taken cell by cell: the queries in
-  /// one cell of this grid share one list of the points that can be nearest to any of them.
+  /// Nearest(queries[q], radius, accept(q, index)) for each query, on `threads` threads (0: all
+  /// cores): the same answers. Where the queries are much denser than the points (a tissue's
+  /// boundary voxels against its surface vertices, the more so on fine images) they are taken
+  /// cell by cell: the queries in one cell of this grid share one list of the points that can
+  /// be the answer for any of them. An infinite radius is NearestAny's search.
+  template <typename Accept>
+  std::vector<int> NearestOfAll(
+    const std::vector<Eigen::Vector3d>& queries, double radius, const Accept& accept, int threads) const;
+
+  /// NearestAny of each of `queries`: NearestOfAll without a radius or a filter.
   std::vector<int> NearestAnyOfAll(const std::vector<Eigen::Vector3d>& queries, int threads) const;
 
 private:
@@ -58,9 +66,20 @@ private:
   // Every point within `radius` of x (a little more, never less), in no particular order.
   void PointsNear(const Eigen::Vector3d& x, double radius, std::vector<int>& found) const;
 
-  // NearestAny of queries[order[first .. last)], which lie in one cell, into `nearest`.
-  void NearestOfGroup(const std::vector<Eigen::Vector3d>& queries, const std::vector<int>& order,
-    std::size_t first, std::size_t last, std::vector<int>& candidates, std::vector<int>& nearest) const;
+  // Queries in the order of this grid's cells: group g is Order[Start[g] .. Start[g + 1]).
+  struct QueryGroups
+  {
+    std::vector<int> Order;
+    std::vector<int> Start;
+  };
+
+  // Groups the queries by cell; false (and no Order) where there are too few per cell for a
+  // shared search to pay.
+  bool GroupByCell(const std::vector<Eigen::Vector3d>& queries, QueryGroups& groups) const;
+
+  // The points that can answer a query of group g within `radius` (infinite: NearestAny).
+  void GroupCandidates(const std::vector<Eigen::Vector3d>& queries, const QueryGroups& groups,
+    std::int64_t g, double radius, std::vector<int>& candidates) const;
 
   // The cell of x along each axis, not clamped: x lies inside it even when outside the grid.
   Eigen::Matrix<std::int64_t, 3, 1> QueryCellOf(const Eigen::Vector3d& x) const;
@@ -113,6 +132,49 @@ int PointGrid::Nearest(const Eigen::Vector3d& x, double radius, const Accept& ac
       return best.Index;
     }
   }
+}
+
+template <typename Accept>
+std::vector<int> PointGrid::NearestOfAll(
+  const std::vector<Eigen::Vector3d>& queries, double radius, const Accept& accept, int threads) const
+{
+  const std::int64_t count = static_cast<std::int64_t>(queries.size());
+  std::vector<int> nearest(queries.size(), -1);
+  if (this->Sorted.empty() || count == 0 || !(radius >= 0.0))
+    return nearest;
+  QueryGroups groups;
+  if (!this->GroupByCell(queries, groups))
+  {
+#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(threads))
+    for (std::int64_t q = 0; q < count; ++q)
+      nearest[q] = this->Nearest(queries[q], radius, [&](int index) { return accept(q, index); });
+    return nearest;
+  }
+  const std::int64_t groupCount = static_cast<std::int64_t>(groups.Start.size()) - 1;
+#pragma omp parallel num_threads(ThreadCount(threads))
+  {
+    std::vector<int> candidates;
+#pragma omp for schedule(dynamic, 16)
+    for (std::int64_t g = 0; g < groupCount; ++g)
+    {
+      this->GroupCandidates(queries, groups, g, radius, candidates);
+      for (int i = groups.Start[g]; i < groups.Start[g + 1]; ++i)
+      {
+        // As ScanRow compares: the nearest accepted, the lower index on a tie.
+        const std::int64_t q = groups.Order[i];
+        Best best{ -1, radius * radius };
+        for (const int index : candidates)
+        {
+          const double distance = (this->Points[index] - queries[q]).squaredNorm();
+          if ((distance < best.Distance || (distance == best.Distance && (best.Index < 0 || index < best.Index))) &&
+            accept(q, index))
+            best = Best{ index, distance };
+        }
+        nearest[q] = best.Index;
+      }
+    }
+  }
+  return nearest;
 }
 
 template <typename Accept>

@@ -197,3 +197,45 @@ TEST(PointGrid, NearestOfAllFewQueriesAndEmptyGrid)
   EXPECT_EQ(empty.NearestAnyOfAll(queries, 2), std::vector<int>(queries.size(), -1));
   EXPECT_TRUE(cbc3d::PointGrid(points, 1.0).NearestAnyOfAll(none, 2).empty());
 }
+
+TEST(PointGrid, NearestOfAllWithARadiusAndAFilter)
+{
+  // Sources on a sphere, targets dense around it: each target takes the nearest source within
+  // the radius that its filter accepts (here: a source of the same parity as the target, and
+  // none for every seventh target); cell by cell and one by one agree, ties included.
+  std::mt19937 random(13);
+  std::normal_distribution<double> normal;
+  std::vector<Eigen::Vector3d> points(300);
+  for (auto& p : points)
+    p = 8.0 * Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized();
+  points.push_back(points[10]); // a tie: the same position twice
+  std::vector<Eigen::Vector3d> queries;
+  for (double x = -9.5; x <= 9.5; x += 0.5)
+    for (double y = -9.5; y <= 9.5; y += 0.5)
+      for (double z = -9.5; z <= 9.5; z += 0.5)
+      {
+        const double r = std::sqrt(x * x + y * y + z * z);
+        if (r > 7.0 && r < 9.0)
+          queries.emplace_back(x, y, z);
+      }
+  queries.push_back(points[10]);
+  auto accept = [](std::int64_t q, int index) { return q % 7 != 0 && (q + index) % 2 == 0; };
+  for (const double cell : { 1.0, 2.5 })
+  {
+    const cbc3d::PointGrid grid(points, cell);
+    for (const double radius : { 0.75, 2.0 })
+    {
+      const std::vector<int> nearest = grid.NearestOfAll(queries, radius, accept, 3);
+      ASSERT_EQ(nearest.size(), queries.size());
+      int found = 0;
+      for (std::size_t q = 0; q < queries.size(); ++q)
+      {
+        const std::int64_t query = static_cast<std::int64_t>(q);
+        ASSERT_EQ(nearest[q], grid.Nearest(queries[q], radius, [&](int index) { return accept(query, index); }))
+          << "query " << q << " cell " << cell << " radius " << radius;
+        found += nearest[q] >= 0;
+      }
+      EXPECT_GT(found, 100); // the radius and filter leave answers to compare
+    }
+  }
+}
