@@ -171,9 +171,11 @@ RowRun InsideRun(const IndexSpaceTet& tet, const Eigen::Vector3d& rowStart, cons
     return {};
   }
   auto inside = [&](std::int64_t i) { return tet.Contains(rowStart + double(i - first) * rowStep); };
+  // A sample before floor(lower) or after ceil(upper) has a coordinate below -loose, far below
+  // Contains's -1e-9 (a rounding error is some 1e-12 here): the exact tests start there.
   RowRun run;
-  run.First = std::max(first, first + static_cast<std::int64_t>(std::floor(lower)) - 2);
-  run.Last = std::min(last, first + static_cast<std::int64_t>(std::ceil(upper)) + 2);
+  run.First = std::max(first, first + static_cast<std::int64_t>(std::floor(lower)));
+  run.Last = std::min(last, first + static_cast<std::int64_t>(std::ceil(upper)));
   while (run.First <= run.Last && !inside(run.First))
     ++run.First;
   while (run.Last >= run.First && !inside(run.Last))

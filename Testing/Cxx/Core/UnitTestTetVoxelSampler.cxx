@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <random>
 #include <gtest/gtest.h>
 
 #include "TestImages.h"
@@ -167,4 +168,56 @@ TEST(TetVoxelSampler, TetsFarLargerThanTheImageCountEverySampleOnce)
     }
     EXPECT_EQ(total, 44 * 44 * 44 * cbc3d::VoxelWeight) << shift;
   }
+}
+
+TEST(TetVoxelSampler, RandomTetsCountTheVoxelCentresInsideThem)
+{
+  // Tets with random corners, some reaching beyond a 20^3 image of random labels 0-3: each
+  // counts the voxel centres (the integer points) strictly inside it, by label, those beyond
+  // the image as background, as testing every point of its box would. Random corners put no
+  // point on a face, so "inside" needs no tie-break here.
+  std::mt19937 random(17);
+  cbc3d::LabelImage image;
+  image.Dimensions = { 20, 20, 20 };
+  image.Labels.resize(8000);
+  for (auto& label : image.Labels)
+    label = static_cast<std::int32_t>(random() % 4);
+  std::uniform_real_distribution<double> coordinate(-3.0, 23.0), offset(-4.0, 4.0);
+  int sampled = 0;
+  for (int t = 0; t < 300; ++t)
+  {
+    std::array<Eigen::Vector3d, 4> corners;
+    corners[0] = Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
+    const double size = t % 3 == 0 ? 3.0 : 1.0; // small tets, and some of a few voxels across
+    for (int v = 1; v < 4; ++v)
+      corners[v] = corners[0] + size * Eigen::Vector3d(offset(random), offset(random), offset(random));
+    Eigen::Matrix3d edges;
+    edges << corners[1] - corners[0], corners[2] - corners[0], corners[3] - corners[0];
+    if (std::abs(edges.determinant()) < 1e-3)
+      continue;
+    const Eigen::Matrix3d toBarycentric = edges.inverse();
+    std::array<std::int64_t, 4> expected = { 0, 0, 0, 0 };
+    Eigen::Vector3d lower = corners[0], upper = corners[0];
+    for (const auto& c : corners)
+    {
+      lower = lower.cwiseMin(c);
+      upper = upper.cwiseMax(c);
+    }
+    for (int k = int(std::ceil(lower[2])); k <= int(std::floor(upper[2])); ++k)
+      for (int j = int(std::ceil(lower[1])); j <= int(std::floor(upper[1])); ++j)
+        for (int i = int(std::ceil(lower[0])); i <= int(std::floor(upper[0])); ++i)
+        {
+          const Eigen::Vector3d b = toBarycentric * (Eigen::Vector3d(i, j, k) - corners[0]);
+          if (b.minCoeff() > 0.0 && b.sum() < 1.0)
+            ++expected[image.IsStored(i, j, k) ? image.LabelAt(i, j, k) : 0];
+        }
+    if (expected[0] + expected[1] + expected[2] + expected[3] == 0)
+      continue; // such a tet is sampled finer (UpsamplesATetThatHoldsNoVoxelCentre)
+    cbc3d::LabelCounts counts;
+    ASSERT_EQ(cbc3d::SampleTetLabels(image, corners, counts), 1) << "tet " << t;
+    for (int label = 0; label < 4; ++label)
+      ASSERT_EQ(counts.Of(label), expected[label] * cbc3d::VoxelWeight) << "tet " << t << " label " << label;
+    ++sampled;
+  }
+  EXPECT_GT(sampled, 100);
 }
