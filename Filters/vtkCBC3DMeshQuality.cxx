@@ -6,6 +6,7 @@
 
 #include "cbc3d/MeshTopology.h"
 #include "cbc3d/Parallel.h"
+#include "cbc3d/PointGrid.h"
 #include "cbc3d/Quality.h"
 #include "cbc3d/SurfaceDistance.h"
 #include "cbc3d/SurfacePoints.h"
@@ -21,9 +22,6 @@
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointSet.h>
-#include <vtkPoints.h>
-#include <vtkPolyData.h>
-#include <vtkStaticPointLocator.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
@@ -61,39 +59,15 @@ void AddCellArray(vtkUnstructuredGrid* grid, const char* name, const std::vector
   grid->GetCellData()->AddArray(array);
 }
 
-// Distance from every point of `from` to the nearest point of the located set, in parallel
-// (vtkStaticPointLocator::FindClosestPoint is thread safe once built).
-std::vector<double> NearestDistances(const std::vector<Eigen::Vector3d>& from,
-  vtkStaticPointLocator* to, vtkPoints* toPoints, int threads)
+// Distance from every point of `from` to the nearest of `to` (gridded), on `threads` threads.
+std::vector<double> NearestDistances(const std::vector<Eigen::Vector3d>& from, const cbc3d::PointGrid& grid,
+  const std::vector<Eigen::Vector3d>& to, int threads)
 {
+  const std::vector<int> nearest = grid.NearestAnyOfAll(from, threads);
   std::vector<double> distances(from.size());
-  const std::int64_t count = static_cast<std::int64_t>(from.size());
-#pragma omp parallel for schedule(static) num_threads(cbc3d::ThreadCount(threads))
-  for (std::int64_t i = 0; i < count; ++i)
-  {
-    const vtkIdType nearest = to->FindClosestPoint(from[i].data());
-    double p[3];
-    toPoints->GetPoint(nearest, p);
-    distances[i] = (from[i] - Eigen::Vector3d(p[0], p[1], p[2])).norm();
-  }
+  for (std::size_t i = 0; i < from.size(); ++i)
+    distances[i] = (from[i] - to[nearest[i]]).norm();
   return distances;
-}
-
-vtkSmartPointer<vtkStaticPointLocator> MakeLocator(
-  const std::vector<Eigen::Vector3d>& points, vtkPoints* storage)
-{
-  storage->SetDataTypeToDouble();
-  storage->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
-  for (std::size_t i = 0; i < points.size(); ++i)
-  {
-    storage->SetPoint(static_cast<vtkIdType>(i), points[i].data());
-  }
-  vtkNew<vtkPolyData> cloud;
-  cloud->SetPoints(storage);
-  auto locator = vtkSmartPointer<vtkStaticPointLocator>::New();
-  locator->SetDataSet(cloud);
-  locator->BuildLocator();
-  return locator;
 }
 
 // The topology arrays: the whole body's, then one value per tissue row (`labels`, ascending).
@@ -166,9 +140,10 @@ struct TissueRow
   std::size_t DistanceCount = 0; // points behind the mean
 };
 
-// The two-sided distances between a tissue's surface vertices and its boundary voxel centres.
+// The two-sided distances between a tissue's surface vertices and its boundary voxel centres
+// (grids of cells of about a voxel; a grid over few points widens its own cells).
 void MeasureDistances(const cbc3d::TetMesh& mesh, const std::vector<cbc3d::PointId>& surface,
-  const std::vector<Eigen::Vector3d>& boundary, int threads, TissueRow& row)
+  const std::vector<Eigen::Vector3d>& boundary, double voxelSize, int threads, TissueRow& row)
 {
   std::vector<Eigen::Vector3d> meshPoints;
   meshPoints.reserve(surface.size());
@@ -176,11 +151,9 @@ void MeasureDistances(const cbc3d::TetMesh& mesh, const std::vector<cbc3d::Point
   {
     meshPoints.push_back(mesh.Points[id]);
   }
-  vtkNew<vtkPoints> meshStorage, imageStorage;
-  auto meshLocator = MakeLocator(meshPoints, meshStorage);
-  auto imageLocator = MakeLocator(boundary, imageStorage);
-  std::vector<double> meshToImage = NearestDistances(meshPoints, imageLocator, imageStorage, threads);
-  std::vector<double> imageToMesh = NearestDistances(boundary, meshLocator, meshStorage, threads);
+  const cbc3d::PointGrid meshGrid(meshPoints, voxelSize), imageGrid(boundary, voxelSize);
+  std::vector<double> meshToImage = NearestDistances(meshPoints, imageGrid, boundary, threads);
+  std::vector<double> imageToMesh = NearestDistances(boundary, meshGrid, meshPoints, threads);
   row.DistanceCount = meshToImage.size() + imageToMesh.size();
   row.Distances = cbc3d::SummarizeSurfaceDistances(meshToImage, imageToMesh);
 }
@@ -310,7 +283,8 @@ bool MeasureTissues(vtkCBC3DMeshQuality* filter, const cbc3d::TetMesh& mesh, con
     }
     else if (image)
     {
-      MeasureDistances(mesh, meshSide->second, imageSide->second, filter->GetNumberOfThreads(), row);
+      MeasureDistances(mesh, meshSide->second, imageSide->second, image->Spacing.maxCoeff(),
+        filter->GetNumberOfThreads(), row);
     }
     rows.push_back(row);
     done += 1.0;

@@ -59,25 +59,31 @@ TissueVoxels TissueBoundaryVoxels(const LabelImage& image, int numberOfThreads)
   const std::array<int, 3> first = image.StoredLower, last = image.StoredUpper();
   // One list of (label, voxel) per slice, merged in slice order for a thread-independent result.
   std::vector<std::vector<std::pair<std::int32_t, std::int64_t>>> perSlice(d[2]);
+  const std::array<std::int64_t, 3> stride = image.VoxelStrides();
+  const std::int32_t* labels = image.Labels.data();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(ThreadCount(numberOfThreads))
   for (int k = first[2]; k <= last[2]; ++k)
   {
     auto& found = perSlice[k];
     for (int j = first[1]; j <= last[1]; ++j)
     {
+      // Indices, not pointers, into the rows around: those beyond the stored box are only
+      // read for tissue voxels, which are never at its edge unless at the image's border.
+      const std::int64_t row = image.VoxelIndex(first[0], j, k) - first[0];
+      const bool borderRow = j == 0 || k == 0 || j == d[1] - 1 || k == d[2] - 1;
       for (int i = first[0]; i <= last[0]; ++i)
       {
-        const std::int32_t label = image.LabelAt(i, j, k);
+        const std::int64_t v = row + i;
+        const std::int32_t label = labels[v];
         if (!image.IsTissue(label))
         {
           continue;
         }
-        const bool border = i == 0 || j == 0 || k == 0 || i == d[0] - 1 || j == d[1] - 1 || k == d[2] - 1;
-        if (border || image.LabelAt(i - 1, j, k) != label || image.LabelAt(i + 1, j, k) != label ||
-          image.LabelAt(i, j - 1, k) != label || image.LabelAt(i, j + 1, k) != label ||
-          image.LabelAt(i, j, k - 1) != label || image.LabelAt(i, j, k + 1) != label)
+        if (borderRow || i == 0 || i == d[0] - 1 || labels[v - 1] != label || labels[v + 1] != label ||
+          labels[v - stride[1]] != label || labels[v + stride[1]] != label ||
+          labels[v - stride[2]] != label || labels[v + stride[2]] != label)
         {
-          found.emplace_back(label, image.VoxelIndex(i, j, k));
+          found.emplace_back(label, v);
         }
       }
     }
