@@ -139,26 +139,41 @@ void ExpectNearestOfAll(const std::vector<Eigen::Vector3d>& points, const std::v
     }
   }
 }
+
+// `count` random points on the sphere of `radius` about the origin.
+std::vector<Eigen::Vector3d> SpherePoints(std::size_t count, double radius, unsigned seed)
+{
+  std::mt19937 random(seed);
+  std::normal_distribution<double> normal;
+  std::vector<Eigen::Vector3d> points(count);
+  for (auto& p : points)
+    p = radius * Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized();
+  return points;
+}
+
+// The points of the lattice of `step` within `extent` of the origin per axis whose distance
+// from the origin lies in (inner, outer): voxel centres around a sphere.
+std::vector<Eigen::Vector3d> ShellLattice(double extent, double step, double inner, double outer)
+{
+  std::vector<Eigen::Vector3d> points;
+  for (double x = -extent; x <= extent; x += step)
+    for (double y = -extent; y <= extent; y += step)
+      for (double z = -extent; z <= extent; z += step)
+      {
+        const double r = std::sqrt(x * x + y * y + z * z);
+        if (r > inner && r < outer)
+          points.emplace_back(x, y, z);
+      }
+  return points;
+}
 } // namespace
 
 TEST(PointGrid, NearestOfAllDenseQueriesAgainstSparsePoints)
 {
   // Vertices on a sphere, voxel centres on a finer lattice in a shell around it and some far
   // off: many queries per cell, answered cell by cell.
-  std::mt19937 random(5);
-  std::normal_distribution<double> normal;
-  std::vector<Eigen::Vector3d> points(400);
-  for (auto& p : points)
-    p = 10.0 * Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized();
-  std::vector<Eigen::Vector3d> queries;
-  for (double x = -12.0; x <= 12.0; x += 0.5)
-    for (double y = -12.0; y <= 12.0; y += 0.5)
-      for (double z = -12.0; z <= 12.0; z += 0.5)
-      {
-        const double r = std::sqrt(x * x + y * y + z * z);
-        if (r > 9.0 && r < 11.0)
-          queries.emplace_back(x, y, z);
-      }
+  const std::vector<Eigen::Vector3d> points = SpherePoints(400, 10.0, 5);
+  std::vector<Eigen::Vector3d> queries = ShellLattice(12.0, 0.5, 9.0, 11.0);
   queries.emplace_back(100.0, -3.0, 40.0);
   queries.emplace_back(-250.0, 0.0, 0.0);
   ASSERT_GT(queries.size(), 4000u);
@@ -203,21 +218,9 @@ TEST(PointGrid, NearestOfAllWithARadiusAndAFilter)
   // Sources on a sphere, targets dense around it: each target takes the nearest source within
   // the radius that its filter accepts (here: a source of the same parity as the target, and
   // none for every seventh target); cell by cell and one by one agree, ties included.
-  std::mt19937 random(13);
-  std::normal_distribution<double> normal;
-  std::vector<Eigen::Vector3d> points(300);
-  for (auto& p : points)
-    p = 8.0 * Eigen::Vector3d(normal(random), normal(random), normal(random)).normalized();
+  std::vector<Eigen::Vector3d> points = SpherePoints(300, 8.0, 13);
   points.push_back(points[10]); // a tie: the same position twice
-  std::vector<Eigen::Vector3d> queries;
-  for (double x = -9.5; x <= 9.5; x += 0.5)
-    for (double y = -9.5; y <= 9.5; y += 0.5)
-      for (double z = -9.5; z <= 9.5; z += 0.5)
-      {
-        const double r = std::sqrt(x * x + y * y + z * z);
-        if (r > 7.0 && r < 9.0)
-          queries.emplace_back(x, y, z);
-      }
+  std::vector<Eigen::Vector3d> queries = ShellLattice(9.5, 0.5, 7.0, 9.0);
   queries.push_back(points[10]);
   auto accept = [](std::int64_t q, int index) { return q % 7 != 0 && (q + index) % 2 == 0; };
   for (const double cell : { 1.0, 2.5 })
