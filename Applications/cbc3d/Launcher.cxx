@@ -16,15 +16,19 @@
 
 int main(int, char* argv[])
 {
+  // This program's path: from /proc (links resolved), else as it was started with a folder.
   char self[4096];
   const ssize_t length = readlink("/proc/self/exe", self, sizeof(self) - 1);
-  if (length <= 0)
+  const std::string program = length > 0 ? std::string(self, std::size_t(length))
+    : argv[0] && std::strchr(argv[0], '/')  ? std::string(argv[0])
+                                            : std::string();
+  if (program.empty())
   {
-    std::fprintf(stderr, "cbc3d: error: cannot find this program's folder (/proc/self/exe: %s)\n",
+    std::fprintf(stderr, "cbc3d: error: cannot find this program's folder (/proc/self/exe: %s); "
+                         "run it with its path\n",
       std::strerror(errno));
     return 1;
   }
-  const std::string program(self, std::size_t(length));
   const std::string mesher =
     program.substr(0, program.find_last_of('/') + 1) + CBC3D_MESHER_FROM_BIN;
   RunWithHugePages(mesher.c_str(), argv, StopSignalNumbers());
