@@ -2,6 +2,11 @@
 
 #include "cbc3d/PendingFiles.h"
 
+#include <vtkLogger.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
+
 #include <csignal>
 #include <cstring>
 #include <exception>
@@ -21,6 +26,29 @@ void OnStopSignal(int signal)
   static_cast<void>(ignored);
   _exit(128 + signal);
 }
+
+const char* const OutOfMemory = "out of memory: try a larger --bcc-size, or a machine with more memory";
+
+// Set when VTK reports an allocation it could not make: Debian builds VTK without NDEBUG, so
+// its arrays call abort() right after the report instead of throwing std::bad_alloc.
+volatile std::sig_atomic_t VtkAllocationFailed = 0;
+
+// Keeps VTK's messages off the terminal (every error the user needs arrives through an
+// ErrorCapture as one line) and notes the one that announces VTK's abort().
+class QuietOutputWindow : public vtkOutputWindow
+{
+public:
+  static QuietOutputWindow* New();
+  vtkTypeMacro(QuietOutputWindow, vtkOutputWindow);
+  void DisplayText(const char* text) override
+  {
+    if (text && std::strstr(text, "Unable to allocate"))
+    {
+      VtkAllocationFailed = 1;
+    }
+  }
+};
+vtkStandardNewMacro(QuietOutputWindow);
 
 void WriteError(const char* message, const char* detail = "")
 {
@@ -44,7 +72,7 @@ void OnTerminate()
   }
   catch (const std::bad_alloc&)
   {
-    WriteError("out of memory: try a larger --bcc-size, or a machine with more memory");
+    WriteError(OutOfMemory);
   }
   catch (const std::exception& e)
   {
@@ -56,7 +84,23 @@ void OnTerminate()
   }
   _exit(1);
 }
+
+// An abort() that is not ours: VTK's after a failed allocation (see VtkAllocationFailed), or a
+// library's check. One line instead of a core dump, and no file left behind.
+void OnAbort(int)
+{
+  cbc3d::PendingFiles::RemoveAll();
+  WriteError(VtkAllocationFailed ? OutOfMemory : "aborted by a library (internal error)");
+  _exit(1);
+}
 } // namespace
+
+void SilenceVtkMessages()
+{
+  vtkNew<QuietOutputWindow> window;
+  vtkOutputWindow::SetInstance(window);
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+}
 
 void InstallStopHandlers()
 {
@@ -73,6 +117,7 @@ void InstallStopHandlers()
     sigaction(signal, &action, nullptr);
   }
   std::signal(SIGXFSZ, SIG_IGN);
+  std::signal(SIGABRT, OnAbort);
   std::set_terminate(OnTerminate);
   cbc3d::PendingFiles::HoldFinishedFiles(true);
 }

@@ -23,9 +23,7 @@
 #include <vtkCallbackCommand.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
-#include <vtkLogger.h>
 #include <vtkNew.h>
-#include <vtkStringOutputWindow.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <chrono>
@@ -191,11 +189,7 @@ int Run(int argc, char* argv[])
     std::cout << "cbc3d " << CBC3D_VERSION << std::endl;
     return 0;
   }
-  // Messages from objects nobody observes (pipeline executives) are kept off the terminal:
-  // every error the user needs arrives through an ErrorCapture as one line.
-  vtkNew<vtkStringOutputWindow> silentWindow;
-  vtkOutputWindow::SetInstance(silentWindow);
-  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  SilenceVtkMessages();
   // Find out now, not after a long run, that the output cannot be written.
   std::vector<std::string> written = options.Outputs;
   written.push_back(options.ReportPath);
@@ -208,7 +202,11 @@ int Run(int argc, char* argv[])
     }
   }
 
-  cbc3d::StartThreads(options.Threads);
+  if (!cbc3d::StartThreads(options.Threads))
+  {
+    return Fail("out of memory: cannot start " + std::to_string(cbc3d::ThreadCount(options.Threads)) +
+      " threads; try fewer (--threads)");
+  }
   const bool showProgress = !options.Quiet && isatty(fileno(stderr));
   RunReport report;
   report.Options = options;

@@ -3,7 +3,12 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <condition_variable>
+#include <mutex>
+#include <system_error>
+#include <thread>
 #include <unistd.h>
+#include <vector>
 
 namespace cbc3d
 {
@@ -12,12 +17,57 @@ int ThreadCount(int requested)
   return requested > 0 ? std::min(requested, MaximumThreads) : omp_get_max_threads();
 }
 
-void StartThreads(int requested)
+namespace
 {
-#pragma omp parallel num_threads(ThreadCount(requested))
+// Whether `count` threads with the default stack (libgomp's too, unless OMP_STACKSIZE says
+// otherwise) can exist at once. Their stacks stay in glibc's cache for libgomp to reuse.
+bool CanCreateThreads(int count)
+{
+  std::mutex mutex;
+  std::condition_variable released;
+  bool release = false;
+  std::vector<std::thread> threads;
+  bool created = true;
+  try
+  {
+    threads.reserve(count);
+    for (int i = 0; i < count; ++i)
+    {
+      threads.emplace_back([&] {
+        std::unique_lock<std::mutex> lock(mutex);
+        released.wait(lock, [&] { return release; });
+      });
+    }
+  }
+  catch (const std::system_error&)
+  {
+    created = false;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    release = true;
+  }
+  released.notify_all();
+  for (std::thread& thread : threads)
+  {
+    thread.join();
+  }
+  return created;
+}
+} // namespace
+
+bool StartThreads(int requested)
+{
+  const int count = ThreadCount(requested);
+  if (!CanCreateThreads(count - 1))
+  {
+    return false;
+  }
+#pragma omp parallel num_threads(count)
   {
     static_cast<void>(omp_get_thread_num());
   }
+  return true;
 }
 
 int ThreadId()

@@ -11,8 +11,10 @@ namespace cbc3d
 int ThreadCount(int requested);
 
 /// Starts the OpenMP runtime's threads for a request now, while memory is plentiful: libgomp
-/// ends the process with its own message when it cannot create a thread later.
-void StartThreads(int requested);
+/// ends the process with its own message when it cannot create a thread later. Returns false,
+/// having started none, when the threads cannot all be created (address space too small for
+/// their stacks), so that the caller can say so.
+bool StartThreads(int requested);
 
 /// The calling thread's id inside a parallel region (0 outside one).
 int ThreadId();
