@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -33,6 +34,13 @@ struct LabelImage
   LabelCodes Codes; // the values the labels stand for (the labels themselves unless larger)
   std::array<int, 3> StoredLower = { 0, 0, 0 };
   std::array<int, 3> StoredSize = { 0, 0, 0 };
+  /// Optional (IndexLabelChanges fills it; empty otherwise): where each stored row's label
+  /// changes. Row r = (j - StoredLower[1]) + StoredSize[1] * (k - StoredLower[2]) changes at
+  /// the x offsets (from StoredLower[0]) RowChanges[RowChangeStart[r] .. RowChangeStart[r + 1]),
+  /// so counting a row's labels skips its uniform stretches without reading them. Whoever
+  /// changes Labels afterwards clears both.
+  std::vector<std::int64_t> RowChangeStart;
+  std::vector<std::int32_t> RowChanges;
 
   std::int64_t VoxelCount() const
   {
@@ -112,9 +120,44 @@ struct LabelImage
   }
   Eigen::Vector3d WorldToIndex(const Eigen::Vector3d& world) const;
 
+  /// Calls visit(label, voxels) for each run of one label among the stored voxels first..last
+  /// (x, inclusive, within the stored box) of stored row (j, k): maximal runs, in order.
+  template <typename Visit>
+  void ForEachRun(int j, int k, int first, int last, Visit&& visit) const
+  {
+    const std::int32_t* row = this->Labels.data() + this->VoxelIndex(this->StoredLower[0], j, k);
+    const int from = first - this->StoredLower[0], to = last - this->StoredLower[0];
+    if (this->RowChangeStart.empty())
+    {
+      for (int start = from; start <= to;)
+      {
+        int end = start + 1;
+        while (end <= to && row[end] == row[start])
+          ++end;
+        visit(row[start], end - start);
+        start = end;
+      }
+      return;
+    }
+    const std::int64_t r = (j - this->StoredLower[1]) +
+      std::int64_t(this->StoredDimensions()[1]) * (k - this->StoredLower[2]);
+    const std::int32_t* change = this->RowChanges.data() + this->RowChangeStart[r];
+    const std::int32_t* end = this->RowChanges.data() + this->RowChangeStart[r + 1];
+    change = std::upper_bound(change, end, from);
+    for (int start = from; start <= to; ++change)
+    {
+      const int next = change < end ? std::min(*change, to + 1) : to + 1;
+      visit(row[start], next - start);
+      start = next;
+    }
+  }
+
   /// The tissue labels present in the image, sorted ascending.
   std::vector<std::int32_t> TissueLabels() const;
 };
+
+/// Fills RowChangeStart and RowChanges from Labels (one pass over them, in parallel).
+void IndexLabelChanges(LabelImage& image, int numberOfThreads = 0);
 
 /// Checks that the image is a usable 3-D label map: at least 2 voxels along every axis,
 /// positive spacing, an orthonormal direction, labels for every stored voxel of a stored box

@@ -183,24 +183,18 @@ RowRun InsideRun(const IndexSpaceTet& tet, const Eigen::Vector3d& rowStart, cons
   return run;
 }
 
-// The voxels first..last of one row, whole (their centres are the samples): each run of one
-// label is added at once, which leaves the counts as adding them one by one would (the same
-// labels in the same order, the same whole sums). Returns the voxels.
-std::int64_t AddVoxelRun(const LabelImage& image, std::int64_t first, std::int64_t last,
+// The voxels first..last of stored row (j, k), whole (their centres are the samples): each run
+// of one label is added at once, which leaves the counts as adding them one by one would (the
+// same labels in the same order, the same whole sums). Returns the voxels.
+std::int64_t AddVoxelRun(const LabelImage& image, int j, int k, int first, int last,
   LabelCounts& counts, std::int32_t owner, std::int32_t* voxelOwner)
 {
-  for (std::int64_t start = first; start <= last;)
-  {
-    const std::int32_t label = image.Labels[start];
-    std::int64_t end = start + 1;
-    while (end <= last && image.Labels[end] == label)
-      ++end;
-    counts.Add(label, VoxelWeight * (end - start));
-    start = end;
-  }
+  image.ForEachRun(j, k, first, last,
+    [&](std::int32_t label, int voxels) { counts.Add(label, VoxelWeight * voxels); });
   if (voxelOwner)
   {
-    std::fill(voxelOwner + first, voxelOwner + last + 1, owner);
+    const std::int64_t start = image.VoxelIndex(first, j, k);
+    std::fill(voxelOwner + start, voxelOwner + start + (last - first) + 1, owner);
   }
   return last - first + 1;
 }
@@ -258,7 +252,7 @@ std::int64_t SampleGrid(const LabelImage& image, const IndexSpaceTet& tet, int s
       const std::int64_t rowVoxels = image.VoxelIndex(storedFirst[0], vj, vk) - storedFirst[0];
       if (subdivision == 1 && from <= to)
       {
-        samples += AddVoxelRun(image, rowVoxels + from, rowVoxels + to, counts, owner, voxelOwner);
+        samples += AddVoxelRun(image, vj, vk, int(from), int(to), counts, owner, voxelOwner);
         samples += addOutside(run.Last - to);
         continue;
       }

@@ -109,3 +109,41 @@ TEST(LabelImage, TissueBoundsMatchEveryVoxelCheckedInAStoredBox)
     EXPECT_EQ(upper, expectedUpper) << "trial " << trial;
   }
 }
+
+TEST(LabelImage, RunsOfARowAreTheSameWithTheChangesIndexed)
+{
+  // Random rows of a stored box, some with long runs: ForEachRun's runs, from the labels and
+  // from the index of changes, are the row's labels, in order, adjacent runs differing.
+  std::mt19937 random(5);
+  cbc3d::LabelImage image;
+  image.Dimensions = { 40, 12, 9 };
+  image.StoredLower = { 3, 2, 1 };
+  image.StoredSize = { 33, 9, 7 };
+  image.Labels.resize(33 * 9 * 7);
+  for (std::size_t v = 0; v < image.Labels.size(); ++v)
+    image.Labels[v] = v % 33 != 0 && random() % 6 != 0 ? image.Labels[v - 1] : static_cast<std::int32_t>(random() % 3);
+  cbc3d::LabelImage indexed = image;
+  cbc3d::IndexLabelChanges(indexed, 3);
+  ASSERT_EQ(indexed.RowChangeStart.size(), std::size_t(9 * 7 + 1));
+  for (int trial = 0; trial < 500; ++trial)
+  {
+    const int j = 2 + int(random() % 9), k = 1 + int(random() % 7);
+    int first = 3 + int(random() % 33), last = 3 + int(random() % 33);
+    if (first > last)
+      std::swap(first, last);
+    for (const cbc3d::LabelImage* which : { &image, &indexed })
+    {
+      std::vector<std::int32_t> expanded;
+      std::int32_t previous = -1;
+      which->ForEachRun(j, k, first, last, [&](std::int32_t label, int voxels) {
+        EXPECT_GT(voxels, 0);
+        EXPECT_NE(label, previous);
+        previous = label;
+        expanded.insert(expanded.end(), std::size_t(voxels), label);
+      });
+      ASSERT_EQ(expanded.size(), std::size_t(last - first + 1));
+      for (int i = first; i <= last; ++i)
+        ASSERT_EQ(expanded[std::size_t(i - first)], image.LabelAt(i, j, k)) << i << " " << j << " " << k;
+    }
+  }
+}

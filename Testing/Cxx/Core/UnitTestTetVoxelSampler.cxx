@@ -170,18 +170,14 @@ TEST(TetVoxelSampler, TetsFarLargerThanTheImageCountEverySampleOnce)
   }
 }
 
-TEST(TetVoxelSampler, RandomTetsCountTheVoxelCentresInsideThem)
+namespace
 {
-  // Tets with random corners, some reaching beyond a 20^3 image of random labels 0-3: each
-  // counts the voxel centres (the integer points) strictly inside it, by label, those beyond
-  // the image as background, as testing every point of its box would. Random corners put no
-  // point on a face, so "inside" needs no tie-break here.
-  std::mt19937 random(17);
-  cbc3d::LabelImage image;
-  image.Dimensions = { 20, 20, 20 };
-  image.Labels.resize(8000);
-  for (auto& label : image.Labels)
-    label = static_cast<std::int32_t>(random() % 4);
+// Tets with random corners, some reaching beyond the image: each must count the voxel centres
+// (the integer points) strictly inside it, by label (0-3), those beyond the stored box as
+// background, as testing every point of its box would. Random corners put no point on a
+// face, so "inside" needs no tie-break here. Returns the tets checked.
+int CheckRandomTets(const cbc3d::LabelImage& image, std::mt19937& random)
+{
   std::uniform_real_distribution<double> coordinate(-3.0, 23.0), offset(-4.0, 4.0);
   int sampled = 0;
   for (int t = 0; t < 300; ++t)
@@ -214,10 +210,40 @@ TEST(TetVoxelSampler, RandomTetsCountTheVoxelCentresInsideThem)
     if (expected[0] + expected[1] + expected[2] + expected[3] == 0)
       continue; // such a tet is sampled finer (UpsamplesATetThatHoldsNoVoxelCentre)
     cbc3d::LabelCounts counts;
-    ASSERT_EQ(cbc3d::SampleTetLabels(image, corners, counts), 1) << "tet " << t;
+    EXPECT_EQ(cbc3d::SampleTetLabels(image, corners, counts), 1) << "tet " << t;
     for (int label = 0; label < 4; ++label)
-      ASSERT_EQ(counts.Of(label), expected[label] * cbc3d::VoxelWeight) << "tet " << t << " label " << label;
+      EXPECT_EQ(counts.Of(label), expected[label] * cbc3d::VoxelWeight) << "tet " << t << " label " << label;
     ++sampled;
   }
-  EXPECT_GT(sampled, 100);
+  return sampled;
+}
+} // namespace
+
+TEST(TetVoxelSampler, RandomTetsCountTheVoxelCentresInsideThem)
+{
+  // A 20^3 image of random labels 0-3, each voxel drawn anew, or kept from the one before
+  // along x four times in five (runs, as in label maps); the whole image stored, or a box; the
+  // rows' label changes indexed or not (LabelImage::ForEachRun reads the labels then).
+  std::mt19937 random(17);
+  for (const bool runs : { false, true })
+    for (const bool box : { false, true })
+      for (const bool indexed : { false, true })
+      {
+        cbc3d::LabelImage image;
+        image.Dimensions = { 20, 20, 20 };
+        if (box)
+        {
+          image.StoredLower = { 2, 3, 1 };
+          image.StoredSize = { 15, 14, 16 };
+        }
+        image.Labels.resize(std::size_t(image.StoredDimensions()[0]) * image.StoredDimensions()[1] *
+          image.StoredDimensions()[2]);
+        for (std::size_t v = 0; v < image.Labels.size(); ++v)
+          image.Labels[v] = runs && v > 0 && random() % 5 != 0 ? image.Labels[v - 1]
+                                                                : static_cast<std::int32_t>(random() % 4);
+        if (indexed)
+          cbc3d::IndexLabelChanges(image, 2);
+        SCOPED_TRACE(::testing::Message() << "runs " << runs << " box " << box << " indexed " << indexed);
+        EXPECT_GT(CheckRandomTets(image, random), 100);
+      }
 }
