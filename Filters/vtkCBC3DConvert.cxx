@@ -71,7 +71,7 @@ void StoreLabels(vtkDataArray* labels, const std::vector<vtkTypeInt64>& backgrou
   out.StoredSize = { upper[0] - lower[0] + 1, upper[1] - lower[1] + 1, upper[2] - lower[2] + 1 };
   out.Labels.resize(std::size_t(out.StoredSize[0]) * out.StoredSize[1] * out.StoredSize[2]);
   vtkCBC3DLabelValues::ToCodes(labels, out.Codes, d, out.StoredLower, out.StoredSize, out.Labels.data(), threads);
-  cbc3d::IndexLabelChanges(out, threads);
+  cbc3d::IndexLabelRuns(out, threads);
 }
 } // namespace
 

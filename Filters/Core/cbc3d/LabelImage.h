@@ -34,13 +34,15 @@ struct LabelImage
   LabelCodes Codes; // the values the labels stand for (the labels themselves unless larger)
   std::array<int, 3> StoredLower = { 0, 0, 0 };
   std::array<int, 3> StoredSize = { 0, 0, 0 };
-  /// Optional (IndexLabelChanges fills it; empty otherwise): where each stored row's label
-  /// changes. Row r = (j - StoredLower[1]) + StoredSize[1] * (k - StoredLower[2]) changes at
-  /// the x offsets (from StoredLower[0]) RowChanges[RowChangeStart[r] .. RowChangeStart[r + 1]),
-  /// so counting a row's labels skips its uniform stretches without reading them. Whoever
-  /// changes Labels afterwards clears both.
-  std::vector<std::int64_t> RowChangeStart;
-  std::vector<std::int32_t> RowChanges;
+  /// Optional (IndexLabelRuns fills it; empty otherwise): each stored row's runs of one label.
+  /// Row r = (j - StoredLower[1]) + StoredSize[1] * (k - StoredLower[2]) has the runs
+  /// RowRunFirst[r] .. RowRunFirst[r + 1] - 1, each starting at x offset (from StoredLower[0])
+  /// RunStart and holding RunLabel: counting a row's labels then reads neither its uniform
+  /// stretches nor, on a large image, the cache lines of the labels. Whoever changes Labels
+  /// afterwards clears the three.
+  std::vector<std::int64_t> RowRunFirst;
+  std::vector<std::int32_t> RunStart;
+  std::vector<std::int32_t> RunLabel;
 
   std::int64_t VoxelCount() const
   {
@@ -127,7 +129,7 @@ struct LabelImage
   {
     const std::int32_t* row = this->Labels.data() + this->VoxelIndex(this->StoredLower[0], j, k);
     const int from = first - this->StoredLower[0], to = last - this->StoredLower[0];
-    if (this->RowChangeStart.empty())
+    if (this->RowRunFirst.empty())
     {
       for (int start = from; start <= to;)
       {
@@ -141,13 +143,14 @@ struct LabelImage
     }
     const std::int64_t r = (j - this->StoredLower[1]) +
       std::int64_t(this->StoredDimensions()[1]) * (k - this->StoredLower[2]);
-    const std::int32_t* change = this->RowChanges.data() + this->RowChangeStart[r];
-    const std::int32_t* end = this->RowChanges.data() + this->RowChangeStart[r + 1];
-    change = std::upper_bound(change, end, from);
-    for (int start = from; start <= to; ++change)
+    const std::int32_t* starts = this->RunStart.data();
+    const std::int32_t* end = starts + this->RowRunFirst[r + 1];
+    // The run holding `from`: the last one that starts at or before it (the first starts at 0).
+    std::int64_t run = std::upper_bound(starts + this->RowRunFirst[r], end, from) - starts - 1;
+    for (int start = from; start <= to; ++run)
     {
-      const int next = change < end ? std::min(*change, to + 1) : to + 1;
-      visit(row[start], next - start);
+      const int next = starts + run + 1 < end ? std::min(starts[run + 1], to + 1) : to + 1;
+      visit(this->RunLabel[run], next - start);
       start = next;
     }
   }
@@ -156,8 +159,8 @@ struct LabelImage
   std::vector<std::int32_t> TissueLabels() const;
 };
 
-/// Fills RowChangeStart and RowChanges from Labels (one pass over them, in parallel).
-void IndexLabelChanges(LabelImage& image, int numberOfThreads = 0);
+/// Fills RowRunFirst, RunStart and RunLabel from Labels (one pass over them, in parallel).
+void IndexLabelRuns(LabelImage& image, int numberOfThreads = 0);
 
 /// Checks that the image is a usable 3-D label map: at least 2 voxels along every axis,
 /// positive spacing, an orthonormal direction, labels for every stored voxel of a stored box

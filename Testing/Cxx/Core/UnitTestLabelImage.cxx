@@ -110,10 +110,10 @@ TEST(LabelImage, TissueBoundsMatchEveryVoxelCheckedInAStoredBox)
   }
 }
 
-TEST(LabelImage, RunsOfARowAreTheSameWithTheChangesIndexed)
+TEST(LabelImage, RunsOfARowAreTheSameFromTheIndexOfRuns)
 {
   // Random rows of a stored box, some with long runs: ForEachRun's runs, from the labels and
-  // from the index of changes, are the row's labels, in order, adjacent runs differing.
+  // from the index of runs, are the row's labels, in order, adjacent runs differing.
   std::mt19937 random(5);
   cbc3d::LabelImage image;
   image.Dimensions = { 40, 12, 9 };
@@ -123,8 +123,8 @@ TEST(LabelImage, RunsOfARowAreTheSameWithTheChangesIndexed)
   for (std::size_t v = 0; v < image.Labels.size(); ++v)
     image.Labels[v] = v % 33 != 0 && random() % 6 != 0 ? image.Labels[v - 1] : static_cast<std::int32_t>(random() % 3);
   cbc3d::LabelImage indexed = image;
-  cbc3d::IndexLabelChanges(indexed, 3);
-  ASSERT_EQ(indexed.RowChangeStart.size(), std::size_t(9 * 7 + 1));
+  cbc3d::IndexLabelRuns(indexed, 3);
+  ASSERT_EQ(indexed.RowRunFirst.size(), std::size_t(9 * 7 + 1));
   for (int trial = 0; trial < 500; ++trial)
   {
     const int j = 2 + int(random() % 9), k = 1 + int(random() % 7);

@@ -223,7 +223,7 @@ TEST(TetVoxelSampler, RandomTetsCountTheVoxelCentresInsideThem)
 {
   // A 20^3 image of random labels 0-3, each voxel drawn anew, or kept from the one before
   // along x four times in five (runs, as in label maps); the whole image stored, or a box; the
-  // rows' label changes indexed or not (LabelImage::ForEachRun reads the labels then).
+  // rows' runs indexed or not (without the index, LabelImage::ForEachRun reads the labels).
   std::mt19937 random(17);
   for (const bool runs : { false, true })
     for (const bool box : { false, true })
@@ -242,7 +242,7 @@ TEST(TetVoxelSampler, RandomTetsCountTheVoxelCentresInsideThem)
           image.Labels[v] = runs && v > 0 && random() % 5 != 0 ? image.Labels[v - 1]
                                                                 : static_cast<std::int32_t>(random() % 4);
         if (indexed)
-          cbc3d::IndexLabelChanges(image, 2);
+          cbc3d::IndexLabelRuns(image, 2);
         SCOPED_TRACE(::testing::Message() << "runs " << runs << " box " << box << " indexed " << indexed);
         EXPECT_GT(CheckRandomTets(image, random), 100);
       }
