@@ -2,6 +2,7 @@
 
 #include "cbc3d/Parallel.h"
 #include "cbc3d/TetGeometry.h"
+#include "cbc3d/TetVoxelSampler.h"
 
 #include <algorithm>
 #include <vector>
@@ -78,10 +79,34 @@ std::map<std::int32_t, double> TissueMeshVolumes(const TetMesh& mesh)
   return volumes;
 }
 
+namespace
+{
+// The tissue voxels per label from the index of runs: one step per run, none per voxel.
+std::map<std::int32_t, std::int64_t> CountTissueRuns(const LabelImage& image)
+{
+  LabelCounts counts; // a few labels: a short list beats a map per run
+  const std::int64_t rowLength = image.StoredDimensions()[0];
+  const std::int64_t rows = static_cast<std::int64_t>(image.RowRunFirst.size()) - 1;
+  for (std::int64_t r = 0; r < rows; ++r)
+  {
+    for (std::int64_t run = image.RowRunFirst[r]; run < image.RowRunFirst[r + 1]; ++run)
+    {
+      const std::int64_t end = run + 1 < image.RowRunFirst[r + 1] ? image.RunStart[run + 1] : rowLength;
+      if (image.IsTissue(image.RunLabel[run]))
+        counts.Add(image.RunLabel[run], end - image.RunStart[run]);
+    }
+  }
+  return std::map<std::int32_t, std::int64_t>(counts.Counts.begin(), counts.Counts.end());
+}
+} // namespace
+
 std::map<std::int32_t, double> TissueImageVolumes(const LabelImage& image, int numberOfThreads)
 {
   std::map<std::int32_t, std::int64_t> counts;
   const std::int64_t voxels = static_cast<std::int64_t>(image.Labels.size());
+  if (!image.RowRunFirst.empty())
+    counts = CountTissueRuns(image);
+  else
 #pragma omp parallel num_threads(ThreadCount(numberOfThreads))
   {
     // Runs of one label are counted at once: one map update per run, not per voxel.

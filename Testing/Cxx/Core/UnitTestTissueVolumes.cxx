@@ -127,9 +127,12 @@ TEST(TissueVolumes, ImageVolumesCountEveryTissueVoxelOnAnyThreads)
     if (label != 0 && label != 5)
       ++expected[label];
   }
-  for (const int threads : { 1, 2, 3, 8 })
+  // From the labels on any threads, then from the index of runs (one step per run).
+  for (const int threads : { 1, 2, 3, 8, -1 })
   {
-    const std::map<std::int32_t, double> volumes = cbc3d::TissueImageVolumes(image, threads);
+    if (threads < 0)
+      cbc3d::IndexLabelRuns(image, 2);
+    const std::map<std::int32_t, double> volumes = cbc3d::TissueImageVolumes(image, std::max(threads, 1));
     ASSERT_EQ(volumes.size(), expected.size()) << threads << " threads";
     for (const auto& [label, count] : expected)
       EXPECT_EQ(volumes.at(label), 3.0 * double(count)) << "label " << label << ", " << threads << " threads";
