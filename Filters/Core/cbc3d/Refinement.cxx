@@ -166,17 +166,19 @@ std::map<std::int32_t, TissueFidelity> MeasureFidelity(const LabelImage& image,
   }
   CountTissueVoxelsInTets(image, mesh, threads, inTets, shared);
   componentInMesh.assign(components.Label.size(), 0);
-  const std::int64_t voxelCount = static_cast<std::int64_t>(components.Voxels.size());
-#pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
-  for (std::int64_t i = 0; i < voxelCount; ++i)
+  const std::int64_t runCount = static_cast<std::int64_t>(components.Runs.size());
+#pragma omp parallel for schedule(dynamic, 64) num_threads(ThreadCount(threads))
+  for (std::int64_t r = 0; r < runCount; ++r)
   {
-    const std::int64_t v = components.Voxels[i];
-    const std::int32_t component = components.ComponentOfVoxel[v];
-    const std::int32_t owner = mesh.VoxelOwner[v];
-    if (component >= 0 && owner >= 0 && mesh.Labels[owner] == components.Label[component])
+    for (std::int64_t v = components.Runs[r].First; v <= components.Runs[r].Last; ++v)
     {
+      const std::int32_t component = components.ComponentOfVoxel[v];
+      const std::int32_t owner = mesh.VoxelOwner[v];
+      if (component >= 0 && owner >= 0 && mesh.Labels[owner] == components.Label[component])
+      {
 #pragma omp atomic write
-      componentInMesh[component] = 1;
+        componentInMesh[component] = 1;
+      }
     }
   }
   std::map<std::int32_t, TissueFidelity> result;
@@ -218,12 +220,11 @@ std::map<std::int64_t, std::int32_t> PinComponents(const LabelImage& image,
   const std::size_t count = components.Label.size();
   std::vector<std::vector<std::int32_t>> fewHolders(count);
   std::map<std::int32_t, std::map<std::int32_t, std::int64_t>> missing; // component -> tet -> voxels
-  for (const std::int64_t v : components.Voxels)
-  {
+  components.ForEachVoxel([&](std::int64_t v) {
     const std::int32_t component = components.ComponentOfVoxel[v], owner = mesh.VoxelOwner[v];
     if (component < 0 || owner < 0 || IsSmall(components, component, minimumVoxels))
     {
-      continue;
+      return;
     }
     if (!componentInMesh[component])
     {
@@ -237,7 +238,7 @@ std::map<std::int64_t, std::int32_t> PinComponents(const LabelImage& image,
         holders.push_back(owner);
       }
     }
-  }
+  });
   std::map<std::int64_t, std::int32_t> pinned;
   for (std::size_t component = 0; component < count; ++component)
   {
@@ -317,15 +318,14 @@ std::vector<char> MarkForFidelity(const LabelImage& image, const TissueComponent
       }
     }
   }
-  for (const std::int64_t v : components.Voxels)
-  {
+  components.ForEachVoxel([&](std::int64_t v) {
     const std::int32_t component = components.ComponentOfVoxel[v];
     if (component >= 0 && !componentInMesh[component] &&
       !IsSmall(components, component, params.MinimumComponentVoxels) && mesh.VoxelOwner[v] >= 0)
     {
       marked[mesh.Source[mesh.VoxelOwner[v]]] = 1;
     }
-  }
+  });
   return marked;
 }
 

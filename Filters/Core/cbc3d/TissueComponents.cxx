@@ -105,15 +105,20 @@ TissueComponents FindTissueComponents(const LabelImage& image)
       result.Label.push_back(image.Labels[seed]);
       result.Size.push_back(size);
     });
-  std::int64_t tissueVoxels = 0;
-  for (const std::int64_t size : result.Size)
-    tissueVoxels += size;
-  result.Voxels.reserve(static_cast<std::size_t>(tissueVoxels));
   for (int k = lower[2]; k <= upper[2]; ++k)
     for (int j = lower[1]; j <= upper[1]; ++j)
-      for (std::int64_t v = image.VoxelIndex(lower[0], j, k), last = image.VoxelIndex(upper[0], j, k); v <= last; ++v)
-        if (result.ComponentOfVoxel[v] >= 0)
-          result.Voxels.push_back(v);
+    {
+      const std::int64_t last = image.VoxelIndex(upper[0], j, k);
+      for (std::int64_t v = image.VoxelIndex(lower[0], j, k); v <= last; ++v)
+      {
+        if (result.ComponentOfVoxel[v] < 0)
+          continue;
+        const std::int64_t first = v;
+        while (v < last && result.ComponentOfVoxel[v + 1] >= 0)
+          ++v;
+        result.Runs.push_back({ first, v });
+      }
+    }
   return result;
 }
 
