@@ -17,10 +17,13 @@ BoundaryCoverage::BoundaryCoverage(const LabelImage& image, const TissueComponen
   for (const auto& [label, voxels] : TissueBoundaryVoxels(image, numberOfThreads))
   {
     Tissue& tissue = this->Tissues[label];
+    // Both ascend: the component runs are walked alongside the boundary voxels.
+    auto run = components.Runs.begin();
     for (const std::int64_t v : voxels)
     {
-      const std::int32_t component = components.ComponentOfVoxel[v];
-      if (component >= 0 && components.Size[component] >= minimumVoxels)
+      while (run->Last < v)
+        ++run;
+      if (components.Size[run->Component] >= minimumVoxels)
       {
         tissue.Centres.push_back(image.VoxelCentre(v));
       }

@@ -170,11 +170,11 @@ std::map<std::int32_t, TissueFidelity> MeasureFidelity(const LabelImage& image,
 #pragma omp parallel for schedule(dynamic, 64) num_threads(ThreadCount(threads))
   for (std::int64_t r = 0; r < runCount; ++r)
   {
+    const std::int32_t component = components.Runs[r].Component;
     for (std::int64_t v = components.Runs[r].First; v <= components.Runs[r].Last; ++v)
     {
-      const std::int32_t component = components.ComponentOfVoxel[v];
       const std::int32_t owner = mesh.VoxelOwner[v];
-      if (component >= 0 && owner >= 0 && mesh.Labels[owner] == components.Label[component])
+      if (owner >= 0 && mesh.Labels[owner] == components.Label[component])
       {
 #pragma omp atomic write
         componentInMesh[component] = 1;
@@ -220,9 +220,9 @@ std::map<std::int64_t, std::int32_t> PinComponents(const LabelImage& image,
   const std::size_t count = components.Label.size();
   std::vector<std::vector<std::int32_t>> fewHolders(count);
   std::map<std::int32_t, std::map<std::int32_t, std::int64_t>> missing; // component -> tet -> voxels
-  components.ForEachVoxel([&](std::int64_t v) {
-    const std::int32_t component = components.ComponentOfVoxel[v], owner = mesh.VoxelOwner[v];
-    if (component < 0 || owner < 0 || IsSmall(components, component, minimumVoxels))
+  components.ForEachVoxel([&](std::int64_t v, std::int32_t component) {
+    const std::int32_t owner = mesh.VoxelOwner[v];
+    if (owner < 0 || IsSmall(components, component, minimumVoxels))
     {
       return;
     }
@@ -318,9 +318,8 @@ std::vector<char> MarkForFidelity(const LabelImage& image, const TissueComponent
       }
     }
   }
-  components.ForEachVoxel([&](std::int64_t v) {
-    const std::int32_t component = components.ComponentOfVoxel[v];
-    if (component >= 0 && !componentInMesh[component] &&
+  components.ForEachVoxel([&](std::int64_t v, std::int32_t component) {
+    if (!componentInMesh[component] &&
       !IsSmall(components, component, params.MinimumComponentVoxels) && mesh.VoxelOwner[v] >= 0)
     {
       marked[mesh.Source[mesh.VoxelOwner[v]]] = 1;

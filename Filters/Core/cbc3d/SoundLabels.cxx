@@ -19,7 +19,7 @@ ImageRegions KeptRegions(const LabelImage& image, const TissueComponents& tissue
 {
   BackgroundComponents gaps = withCavities ? FindBackgroundComponents(image) : BackgroundComponents();
   ImageRegions regions;
-  regions.TissueOfVoxel = &tissues.ComponentOfVoxel;
+  regions.Tissues = &tissues;
   const std::int32_t tissueCount = static_cast<std::int32_t>(tissues.Label.size());
   for (std::int32_t c = 0; c < tissueCount; ++c)
   {

@@ -47,11 +47,17 @@ std::vector<char> KeptPieces(DisjointSets& pieces, const std::vector<std::int32_
 {
   const std::int64_t outside = static_cast<std::int64_t>(classes.size());
   std::vector<std::unordered_map<std::int64_t, std::int64_t>> held(regions.ClassOfRegion.size());
-  for (std::size_t v = 0; v < voxelOwner.size(); ++v)
-  {
-    const std::int32_t region = regions.RegionOfVoxel(std::int64_t(v)), owner = voxelOwner[v];
+  auto hold = [&](std::int32_t region, std::int32_t owner) {
     if (region >= 0 && owner >= 0 && classes[owner] == regions.ClassOfRegion[region])
       ++held[region][pieces.Find(owner)];
+  };
+  // Counts are whole numbers, and the choice below does not depend on the order of the pieces.
+  regions.Tissues->ForEachVoxel([&](std::int64_t v, std::int32_t component) { hold(component, voxelOwner[v]); });
+  for (std::size_t v = 0; v < regions.GapOfVoxel.size(); ++v)
+  {
+    const std::int32_t gap = regions.GapOfVoxel[v];
+    if (gap >= 0)
+      hold(regions.RegionOfGap[gap], voxelOwner[v]);
   }
   std::vector<char> kept(classes.size() + 1, 0);
   kept[pieces.Find(outside)] = 1;

@@ -2,6 +2,7 @@
 #define cbc3d_StrayComponents_h
 
 #include "cbc3d/ManifoldRepair.h"
+#include "cbc3d/TissueComponents.h"
 
 #include <cstdint>
 #include <vector>
@@ -11,11 +12,11 @@ namespace cbc3d
 /// The image's components as the mesh should keep them: each voxel's component (-1 for none to
 /// keep: too small, or the background on the image border, which the outside stands for) and
 /// each component's class.
-/// The tissue components are regions 0..n-1 and the kept cavities follow; a voxel's region is
-/// read from the component maps the image already has, not from a whole-image copy.
+/// The tissue components are regions 0..n-1 and the kept cavities follow; the voxels' regions
+/// are read from the components the image already has, not from a whole-image copy.
 struct ImageRegions
 {
-  const std::vector<std::int32_t>* TissueOfVoxel = nullptr; // tissue component per voxel, or -1
+  const TissueComponents* Tissues = nullptr;
   std::vector<std::int32_t> GapOfVoxel;  // background component per voxel, or -1; empty: none
   std::vector<std::int32_t> RegionOfGap; // per background component: its region, or -1
   std::vector<std::int32_t> ClassOfRegion;
@@ -23,16 +24,6 @@ struct ImageRegions
   /// keeps its piece only where that piece lies against another tissue, not afloat.
   std::vector<char> Speck;
 
-  std::int32_t RegionOfVoxel(std::int64_t voxel) const
-  {
-    const std::int32_t tissue = (*this->TissueOfVoxel)[voxel];
-    if (tissue >= 0 || this->GapOfVoxel.empty())
-    {
-      return tissue;
-    }
-    const std::int32_t gap = this->GapOfVoxel[voxel];
-    return gap >= 0 ? this->RegionOfGap[gap] : -1;
-  }
 };
 
 /// Gives away the face-connected pieces of a class (tissue or background) that stand for no

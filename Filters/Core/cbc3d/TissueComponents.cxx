@@ -1,5 +1,7 @@
 #include "cbc3d/TissueComponents.h"
 
+#include "cbc3d/DisjointSets.h"
+
 #include <algorithm>
 #include <array>
 
@@ -87,38 +89,108 @@ std::vector<std::int32_t> FloodComponents(const LabelImage& image, const std::ar
 }
 } // namespace
 
-TissueComponents FindTissueComponents(const LabelImage& image)
+namespace
 {
-  TissueComponents result;
-  // Only the tissues' box holds tissue: scanning it alone finds the same components, in the
-  // same order, on a mostly empty image.
-  std::array<int, 3> lower, upper;
-  if (!TissueIndexBounds(image, lower, upper))
+// The tissue runs of the box [lower, upper], row by row (x fastest rows, in raster order), with
+// each row's first run: row r of the box holds runs RowFirst[r] .. RowFirst[r + 1] - 1.
+struct BoxRuns
+{
+  struct Run
   {
-    result.ComponentOfVoxel.assign(image.Labels.size(), -1);
-    return result;
-  }
-  result.ComponentOfVoxel = FloodComponents(
-    image, lower, upper, [&](std::int64_t v) { return image.IsTissue(image.Labels[v]); },
-    [&](std::int64_t a, std::int64_t b) { return image.Labels[a] == image.Labels[b]; },
-    [&](std::int64_t seed, std::int64_t size, bool) {
-      result.Label.push_back(image.Labels[seed]);
-      result.Size.push_back(size);
-    });
+    int Start, End; // x, inclusive
+    std::int32_t Label;
+  };
+  std::vector<Run> Runs;
+  std::vector<std::int64_t> RowFirst;
+};
+
+BoxRuns CollectTissueRuns(const LabelImage& image, const std::array<int, 3>& lower,
+  const std::array<int, 3>& upper)
+{
+  BoxRuns box;
+  box.RowFirst.push_back(0);
   for (int k = lower[2]; k <= upper[2]; ++k)
     for (int j = lower[1]; j <= upper[1]; ++j)
     {
-      const std::int64_t last = image.VoxelIndex(upper[0], j, k);
-      for (std::int64_t v = image.VoxelIndex(lower[0], j, k); v <= last; ++v)
-      {
-        if (result.ComponentOfVoxel[v] < 0)
-          continue;
-        const std::int64_t first = v;
-        while (v < last && result.ComponentOfVoxel[v + 1] >= 0)
-          ++v;
-        result.Runs.push_back({ first, v });
-      }
+      int x = lower[0];
+      image.ForEachRun(j, k, lower[0], upper[0], [&](std::int32_t label, int voxels) {
+        if (image.IsTissue(label))
+          box.Runs.push_back({ x, x + voxels - 1, label });
+        x += voxels;
+      });
+      box.RowFirst.push_back(static_cast<std::int64_t>(box.Runs.size()));
     }
+  return box;
+}
+
+// Joins the overlapping runs of one label of rows a and b (each sorted along x).
+void JoinOverlaps(const BoxRuns& box, std::int64_t a, std::int64_t b, DisjointSets& sets)
+{
+  std::int64_t p = box.RowFirst[a], q = box.RowFirst[b];
+  const std::int64_t pEnd = box.RowFirst[a + 1], qEnd = box.RowFirst[b + 1];
+  while (p < pEnd && q < qEnd)
+  {
+    const BoxRuns::Run &u = box.Runs[p], &v = box.Runs[q];
+    if (u.Start <= v.End && v.Start <= u.End && u.Label == v.Label)
+      sets.Join(p, q);
+    // The run that ends first can overlap nothing further along the other row.
+    if (u.End < v.End)
+      ++p;
+    else
+      ++q;
+  }
+}
+} // namespace
+
+std::int32_t TissueComponents::ComponentOf(std::int64_t voxel) const
+{
+  const auto after = std::upper_bound(this->Runs.begin(), this->Runs.end(), voxel,
+    [](std::int64_t v, const Run& run) { return v < run.First; });
+  return after != this->Runs.begin() && voxel <= std::prev(after)->Last ? std::prev(after)->Component : -1;
+}
+
+TissueComponents FindTissueComponents(const LabelImage& image)
+{
+  TissueComponents result;
+  // Only the tissues' box holds tissue.
+  std::array<int, 3> lower, upper;
+  if (!TissueIndexBounds(image, lower, upper))
+  {
+    return result;
+  }
+  const BoxRuns box = CollectTissueRuns(image, lower, upper);
+  const std::int64_t rowsPerSlice = upper[1] - lower[1] + 1;
+  const std::int64_t rows = static_cast<std::int64_t>(box.RowFirst.size()) - 1;
+  DisjointSets sets(box.Runs.size());
+  for (std::int64_t r = 0; r < rows; ++r)
+  {
+    if (r % rowsPerSlice > 0)
+      JoinOverlaps(box, r - 1, r, sets);
+    if (r >= rowsPerSlice)
+      JoinOverlaps(box, r - rowsPerSlice, r, sets);
+  }
+  // Raster order of the runs is that of their first voxels: a component is numbered when its
+  // first run comes, as a flood fill seeded in raster order would number it.
+  std::vector<std::int32_t> componentOfRoot(box.Runs.size(), -1);
+  result.Runs.reserve(box.Runs.size());
+  for (std::int64_t r = 0; r < rows; ++r)
+  {
+    const int j = lower[1] + int(r % rowsPerSlice), k = lower[2] + int(r / rowsPerSlice);
+    const std::int64_t rowStart = image.VoxelIndex(0, j, k); // may lie before the stored box
+    for (std::int64_t n = box.RowFirst[r]; n < box.RowFirst[r + 1]; ++n)
+    {
+      const BoxRuns::Run& run = box.Runs[n];
+      std::int32_t& component = componentOfRoot[sets.Find(n)];
+      if (component < 0)
+      {
+        component = static_cast<std::int32_t>(result.Label.size());
+        result.Label.push_back(run.Label);
+        result.Size.push_back(0);
+      }
+      result.Size[component] += run.End - run.Start + 1;
+      result.Runs.push_back({ rowStart + run.Start, rowStart + run.End, component });
+    }
+  }
   return result;
 }
 

@@ -8,32 +8,36 @@
 
 namespace cbc3d
 {
-/// The 6-connected components of every tissue of a label image.
+/// The 6-connected components of every tissue of a label image, as runs along x: no map the
+/// size of the image (on a 471 M voxel image each such map was 430 MB to fill).
 struct TissueComponents
 {
-  std::vector<std::int32_t> ComponentOfVoxel; // -1 for background voxels
-  std::vector<std::int32_t> Label;            // per component: its tissue label
-  std::vector<std::int64_t> Size;             // per component: its voxel count
-  /// The tissue voxels as runs along x (first and last voxel index, inclusive), ascending:
-  /// loops over the tissue visit neither a mostly empty image nor a list of every voxel (on
-  /// a 471 M voxel image that list alone was 400 MB).
+  std::vector<std::int32_t> Label; // per component: its tissue label
+  std::vector<std::int64_t> Size;  // per component: its voxel count
+  /// The tissue voxels as runs of one label along x (first and last voxel index, inclusive,
+  /// and the component), ascending by voxel.
   struct Run
   {
     std::int64_t First, Last;
+    std::int32_t Component;
   };
   std::vector<Run> Runs;
 
-  /// Calls visit(voxel) for every tissue voxel, ascending.
+  /// Calls visit(voxel, component) for every tissue voxel, ascending.
   template <typename Visit>
   void ForEachVoxel(Visit&& visit) const
   {
     for (const Run& run : this->Runs)
       for (std::int64_t v = run.First; v <= run.Last; ++v)
-        visit(v);
+        visit(v, run.Component);
   }
+  /// The component of a voxel (a stored voxel index), or -1 for a background voxel.
+  std::int32_t ComponentOf(std::int64_t voxel) const;
 };
 
-/// Labels the face-connected components of every tissue (a breadth-first flood fill).
+/// Labels the face-connected components of every tissue: runs of one label in neighbouring
+/// rows that overlap join (disjoint sets over the runs, so the cost follows the runs, not the
+/// voxels). Components are numbered in the order of their first voxel.
 TissueComponents FindTissueComponents(const LabelImage& image);
 
 /// The 6-connected components of the background (all background labels together).

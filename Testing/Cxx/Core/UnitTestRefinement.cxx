@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <random>
 #include <set>
 #include <unordered_map>
 
@@ -220,6 +221,86 @@ TEST(TissueComponents, FaceConnectedOnly)
   ASSERT_EQ(components.Label.size(), 4u);
   EXPECT_EQ(components.Label, (std::vector<std::int32_t>{ 1, 1, 1, 5 }));
   EXPECT_EQ(components.Size, (std::vector<std::int64_t>{ 1, 1, 4, 1 }));
-  EXPECT_EQ(components.ComponentOfVoxel[image.VoxelIndex(4, 4, 4)], 2);
-  EXPECT_EQ(components.ComponentOfVoxel[image.VoxelIndex(5, 5, 5)], -1);
+  EXPECT_EQ(components.ComponentOf(image.VoxelIndex(4, 4, 4)), 2);
+  EXPECT_EQ(components.ComponentOf(image.VoxelIndex(3, 3, 5)), 3);
+  EXPECT_EQ(components.ComponentOf(image.VoxelIndex(5, 5, 5)), -1);
+  EXPECT_EQ(components.ComponentOf(image.VoxelIndex(0, 0, 0)), 0);
+}
+
+// The components by a flood fill over voxels, seeded in raster order: the definition.
+std::vector<std::int32_t> FloodEveryVoxel(const cbc3d::LabelImage& image, std::vector<std::int64_t>& sizes)
+{
+  const auto& n = image.StoredDimensions();
+  std::vector<std::int32_t> component(image.Labels.size(), -1);
+  std::int32_t count = 0;
+  for (std::int64_t seed = 0; seed < std::int64_t(image.Labels.size()); ++seed)
+  {
+    if (component[seed] >= 0 || !image.IsTissue(image.Labels[seed]))
+      continue;
+    std::vector<std::int64_t> stack = { seed };
+    component[seed] = count;
+    sizes.push_back(0);
+    while (!stack.empty())
+    {
+      const std::int64_t v = stack.back();
+      stack.pop_back();
+      ++sizes.back();
+      const std::array<int, 3> at = image.VoxelCoordinates(v);
+      for (int axis = 0; axis < 3; ++axis)
+        for (const int step : { -1, 1 })
+        {
+          std::array<int, 3> next = at;
+          next[axis] += step;
+          if (next[axis] < image.StoredLower[axis] || next[axis] >= image.StoredLower[axis] + n[axis])
+            continue;
+          const std::int64_t w = image.VoxelIndex(next[0], next[1], next[2]);
+          if (component[w] < 0 && image.Labels[w] == image.Labels[v])
+          {
+            component[w] = count;
+            stack.push_back(w);
+          }
+        }
+    }
+    ++count;
+  }
+  return component;
+}
+
+TEST(TissueComponents, RunsJoinAsAFloodFillOverVoxels)
+{
+  // Random blobs of three tissues and two background labels in a stored box, with and without
+  // the index of runs: every voxel's component, the numbering and the sizes of a voxel flood.
+  std::mt19937 random(11);
+  for (int trial = 0; trial < 40; ++trial)
+  {
+    cbc3d::LabelImage image;
+    image.Dimensions = { 24, 20, 18 };
+    image.StoredLower = { 2, 1, 3 };
+    image.StoredSize = { 19, 16, 12 };
+    image.BackgroundLabels = { 0, 9 };
+    image.Labels.resize(19 * 16 * 12);
+    const int change = 2 + trial % 5; // smaller: more, thinner pieces
+    for (std::size_t v = 0; v < image.Labels.size(); ++v)
+    {
+      const bool keep = v % 19 != 0 && int(random() % change) != 0;
+      const std::int32_t fresh = std::array<std::int32_t, 5>{ 0, 9, 1, 2, 3 }[random() % 5];
+      image.Labels[v] = keep ? image.Labels[v - 1] : (v >= 19 * 16 && random() % 2 ? image.Labels[v - 19 * 16] : fresh);
+    }
+    std::vector<std::int64_t> sizes;
+    const std::vector<std::int32_t> expected = FloodEveryVoxel(image, sizes);
+    cbc3d::LabelImage indexed = image;
+    cbc3d::IndexLabelRuns(indexed, 2);
+    for (const cbc3d::LabelImage* which : { &image, &indexed })
+    {
+      const cbc3d::TissueComponents components = cbc3d::FindTissueComponents(*which);
+      ASSERT_EQ(components.Size, sizes) << "trial " << trial;
+      std::vector<std::int32_t> found(image.Labels.size(), -1);
+      components.ForEachVoxel([&](std::int64_t v, std::int32_t c) { found[v] = c; });
+      ASSERT_EQ(found, expected) << "trial " << trial;
+      for (std::size_t c = 0; c < components.Label.size(); ++c)
+        EXPECT_EQ(components.Label[c], image.Labels[std::find(expected.begin(), expected.end(), std::int32_t(c)) - expected.begin()]);
+      for (std::int64_t v = 0; v < std::int64_t(image.Labels.size()); v += 5)
+        ASSERT_EQ(components.ComponentOf(v), expected[v]);
+    }
+  }
 }

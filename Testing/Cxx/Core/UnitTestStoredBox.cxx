@@ -112,8 +112,9 @@ TEST(StoredBox, ComponentsBoundaryVoxelsTargetsAndTopologyAgree)
   EXPECT_EQ(a.Size, b.Size);
   // The runs list every tissue voxel (and no other), ascending, in the whole image and the box.
   std::vector<std::int64_t> aVoxels, bVoxels, tissue;
-  a.ForEachVoxel([&](std::int64_t v) { aVoxels.push_back(v); });
-  b.ForEachVoxel([&](std::int64_t v) { bVoxels.push_back(v); });
+  std::vector<std::int32_t> aComponents, bComponents;
+  a.ForEachVoxel([&](std::int64_t v, std::int32_t c) { aVoxels.push_back(v); aComponents.push_back(c); });
+  b.ForEachVoxel([&](std::int64_t v, std::int32_t c) { bVoxels.push_back(v); bComponents.push_back(c); });
   for (std::int64_t v = 0; v < std::int64_t(whole.Labels.size()); ++v)
     if (whole.IsTissue(whole.Labels[v]))
       tissue.push_back(v);
@@ -122,7 +123,9 @@ TEST(StoredBox, ComponentsBoundaryVoxelsTargetsAndTopologyAgree)
   for (std::size_t n = 0; n < aVoxels.size(); ++n)
   {
     ASSERT_EQ(Same(whole, box, aVoxels[n]), bVoxels[n]);
-    EXPECT_EQ(a.ComponentOfVoxel[aVoxels[n]], b.ComponentOfVoxel[bVoxels[n]]);
+    EXPECT_EQ(aComponents[n], bComponents[n]);
+    EXPECT_EQ(a.ComponentOf(aVoxels[n]), aComponents[n]);
+    EXPECT_EQ(b.ComponentOf(bVoxels[n]), bComponents[n]);
   }
   const cbc3d::BackgroundComponents ga = cbc3d::FindBackgroundComponents(whole),
                                     gb = cbc3d::FindBackgroundComponents(box);
