@@ -139,16 +139,13 @@ double EstimateLatticeBytes(const LabelImage& image, double edgeLength)
   return cubes * BytesPerCube;
 }
 
-Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, TetMesh& mesh,
-  const Progress& progress)
+namespace
 {
-  mesh = TetMesh();
-  const Status valid = ValidateLabelImage(image);
-  if (!valid.IsOk())
-  {
-    return valid;
-  }
-  const double h = params.EdgeLength == 0.0 ? DefaultLatticeEdgeLength(image) : params.EdgeLength;
+// The edge length to use (h), or an error: not positive, larger than the image, or a lattice
+// that would not fit in the memory allowed.
+Status ChooseLatticeEdge(const LabelImage& image, const LatticeParams& params, double& h)
+{
+  h = params.EdgeLength == 0.0 ? DefaultLatticeEdgeLength(image) : params.EdgeLength;
   if (!(h > 0.0) || !std::isfinite(h))
   {
     return Status::Error("the lattice edge length must be a positive number of millimetres");
@@ -173,19 +170,22 @@ Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, Tet
         << " allowed; choose a larger lattice size";
     return Status::Error(msg.str());
   }
+  return Status::Ok();
+}
 
-  LatticeFrame frame;
-  MakeFrame(image, h, frame);
+// Every candidate tet (12 slots per cube), sampled in parallel: each writes only its own slots,
+// kept where a tissue is its majority. False when `progress` asked to stop.
+bool SampleSlots(const LabelImage& image, const LatticeFrame& frame, int threads,
+  const Progress& progress, std::vector<std::int32_t>& slotLabel, std::vector<std::uint8_t>& slotKept)
+{
   const std::int64_t cubes = frame.CubeCount();
-  std::vector<std::int32_t> slotLabel(12 * cubes);
-  std::vector<std::uint8_t> slotKept(12 * cubes, 0);
-
-  // Pass 1, parallel: sample every candidate tet; each writes only its own slots.
+  slotLabel.assign(12 * cubes, 0);
+  slotKept.assign(12 * cubes, 0);
   std::atomic<bool> stop(false);
   std::atomic<std::int64_t> done(0);
   RegionErrors errors; // out of memory in a thread: thrown again below, not std::terminate
   const std::int64_t stride = std::min<std::int64_t>(cubes / 100 + 1, 1000);
-#pragma omp parallel num_threads(ThreadCount(params.NumberOfThreads))
+#pragma omp parallel num_threads(ThreadCount(threads))
   {
     LabelCounts counts;
     std::int64_t ownCubes = 0; // thread 0 reports after every `stride` cubes of its own
@@ -228,12 +228,15 @@ Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, Tet
   }
   errors.Rethrow();
   // Thread 0 may have had no turn to report (a busy machine); ask once more before going on.
-  if (stop.load() || (progress && !progress(0.95)))
-  {
-    return Status::Aborted();
-  }
+  return !stop.load() && !(progress && !progress(0.95));
+}
 
-  // Pass 2, serial and in slot order, so the numbering is the same for any thread count.
+// The kept slots as tets, serially and in slot order, so the numbering is the same for any
+// thread count; each tet positively oriented.
+void AssembleKeptSlots(const LabelImage& image, const LatticeFrame& frame,
+  const std::vector<std::int32_t>& slotLabel, const std::vector<std::uint8_t>& slotKept, TetMesh& mesh)
+{
+  const std::int64_t cubes = frame.CubeCount();
   std::vector<PointId> pointOf(frame.CornerCount() + cubes, -1);
   for (std::int64_t slot = 0; slot < 12 * cubes; ++slot)
   {
@@ -262,6 +265,33 @@ Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, Tet
     mesh.Tets.push_back(tet);
     mesh.Labels.push_back(slotLabel[slot]);
   }
+}
+} // namespace
+
+Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, TetMesh& mesh,
+  const Progress& progress)
+{
+  mesh = TetMesh();
+  const Status valid = ValidateLabelImage(image);
+  if (!valid.IsOk())
+  {
+    return valid;
+  }
+  double h = 0.0;
+  const Status edge = ChooseLatticeEdge(image, params, h);
+  if (!edge.IsOk())
+  {
+    return edge;
+  }
+  LatticeFrame frame;
+  MakeFrame(image, h, frame);
+  std::vector<std::int32_t> slotLabel;
+  std::vector<std::uint8_t> slotKept;
+  if (!SampleSlots(image, frame, params.NumberOfThreads, progress, slotLabel, slotKept))
+  {
+    return Status::Aborted();
+  }
+  AssembleKeptSlots(image, frame, slotLabel, slotKept, mesh);
   if (progress)
   {
     progress(1.0);
