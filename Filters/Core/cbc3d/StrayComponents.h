@@ -23,7 +23,6 @@ struct ImageRegions
   /// Per region: a speck (fewer voxels than a component must have to be kept for sure), which
   /// keeps its piece only where that piece lies against another tissue, not afloat.
   std::vector<char> Speck;
-
 };
 
 /// Gives away the face-connected pieces of a class (tissue or background) that stand for no

@@ -87,10 +87,7 @@ std::vector<std::int32_t> FloodComponents(const LabelImage& image, const std::ar
       }
   return componentOfVoxel;
 }
-} // namespace
 
-namespace
-{
 // The tissue runs of the box [lower, upper], row by row (x fastest rows, in raster order), with
 // each row's first run: row r of the box holds runs RowFirst[r] .. RowFirst[r + 1] - 1.
 struct BoxRuns
