@@ -201,7 +201,7 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
 
   // Tets in batches (their 12x12 matrices take 1152 bytes each), computed in parallel.
   const std::int64_t tetCount = static_cast<std::int64_t>(mesh.Tets.size());
-  constexpr std::int64_t batch = 32768;
+  constexpr std::int64_t batch = 4096;
   std::vector<Eigen::Matrix<double, 12, 12>> local(static_cast<std::size_t>(std::min(batch, tetCount)));
   std::vector<std::int64_t> next(around.Start.begin(), around.Start.end() - 1);
   for (std::int64_t begin = 0; begin < tetCount; begin += batch)
