@@ -50,16 +50,20 @@ vtkDataArray* ChooseLabelArray(vtkInformation* arrayRequest, vtkImageData* image
 
 namespace
 {
-// Stores the codes of the box of the voxels that do not hold the first background label, and
-// one voxel around it (the stages read one voxel beyond a tissue voxel), clamped to the image:
-// the rest of the image is that background, so a padded image costs what its box does.
-void StoreLabels(vtkDataArray* labels, const std::vector<vtkTypeInt64>& backgroundLabels, cbc3d::LabelImage& out,
+// Stores the codes of the box of the voxels that do not hold the first background label
+// (`lower` to `upper`; none: upper[0] < 0), and one voxel around it (the stages read one voxel
+// beyond a tissue voxel), clamped to the image: the rest of the image is that background, so a
+// padded image costs what its box does.
+void StoreLabels(vtkDataArray* labels, std::array<int, 3> lower, std::array<int, 3> upper, cbc3d::LabelImage& out,
   int threads)
 {
   const std::array<int, 3>& d = out.Dimensions;
-  std::array<int, 3> lower = { 0, 0, 0 }, upper = { d[0] - 1, d[1] - 1, d[2] - 1 };
-  if (!backgroundLabels.empty() &&
-    vtkCBC3DLabelValues::OtherValuesBox(labels, d, backgroundLabels.front(), lower, upper, threads))
+  if (upper[0] < 0)
+  {
+    lower = { 0, 0, 0 };
+    upper = { d[0] - 1, d[1] - 1, d[2] - 1 };
+  }
+  else
   {
     for (int a = 0; a < 3; ++a)
     {
@@ -137,8 +141,14 @@ bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   }
 
   // One table for the image's labels, the background labels and the caller's (a mesh's), so
-  // every background label has a code too.
-  if (!vtkCBC3DLabelValues::CollectValues(labels, otherValues, error, threads))
+  // every background label has a code too; the box of the voxels that are not the first
+  // background label comes from the same pass.
+  std::array<int, 3> lower = { 0, 0, 0 }, upper = { -1, -1, -1 };
+  const bool collected = backgroundLabels.empty()
+    ? vtkCBC3DLabelValues::CollectValues(labels, otherValues, error, threads)
+    : vtkCBC3DLabelValues::CollectImageValues(
+        labels, out.Dimensions, backgroundLabels.front(), otherValues, error, lower, upper, threads);
+  if (!collected)
   {
     return false;
   }
@@ -149,7 +159,7 @@ bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   {
     out.Codes.FindCode(backgroundLabels[b], out.BackgroundLabels[b]);
   }
-  StoreLabels(labels, backgroundLabels, out, threads);
+  StoreLabels(labels, lower, upper, out, threads);
   const cbc3d::Status valid = cbc3d::ValidateLabelImage(out);
   if (!valid.IsOk())
   {

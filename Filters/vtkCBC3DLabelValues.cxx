@@ -2,6 +2,8 @@
 
 #include "cbc3d/Parallel.h"
 
+#include <omp.h>
+
 #include <vtkArrayDispatch.h>
 #include <vtkDataArrayRange.h>
 #include <vtkIntArray.h>
@@ -64,91 +66,120 @@ std::string Refusal(T value)
 // "vtktypeint64", which meshio 5.0's legacy reader refuses.
 using LargeLabelArray = std::conditional_t<VTK_SIZEOF_LONG == 8, vtkLongArray, vtkTypeInt64Array>;
 
-// Labels usually span a short range: a table of the values present beats sorting every voxel.
-constexpr std::int64_t LongestPresenceTable = std::int64_t(1) << 24;
-
-// Checks every value and gathers the distinct ones: through a table of the values present when
-// they span a short range (the usual case, and no copy of the image), else by sorting a copy.
-struct Collect
+// The distinct labels one thread has seen, compacted (sorted, duplicates dropped) whenever
+// they have doubled: label maps hold few, and a value is added only where it changes.
+class DistinctLabels
 {
-  std::vector<std::int64_t>* Values = nullptr;
-  std::string Error;
+public:
+  void Add(std::int64_t label)
+  {
+    if (!this->Seen.empty() && this->Seen.back() == label)
+    {
+      return;
+    }
+    this->Seen.push_back(label);
+    if (this->Seen.size() >= this->Limit)
+    {
+      this->Compact();
+    }
+  }
+  void Compact()
+  {
+    std::sort(this->Seen.begin(), this->Seen.end());
+    this->Seen.erase(std::unique(this->Seen.begin(), this->Seen.end()), this->Seen.end());
+    this->Limit = std::max<std::size_t>(2 * this->Seen.size(), 4096);
+  }
+  std::vector<std::int64_t> Seen;
+
+private:
+  std::size_t Limit = 4096;
+};
+
+// One pass over the values as rows of RowLength (x fastest), on the threads: the distinct
+// labels, the first value that is not a label (the one a message names, as a scan in order
+// would find it) and, when Fill is set, each row's first and last value that is not Fill.
+// A value equal to the one before it is not converted again: runs of one label are the rule.
+struct Survey
+{
+  std::int64_t RowLength = 1;
+  const std::int64_t* Fill = nullptr;
   int Threads = 1;
+  std::vector<std::int64_t> Values; // ascending
+  std::string Error;
+  std::vector<std::array<int, 2>> Ends; // per row when Fill is set; { -1, -1 }: all Fill
 
   template <typename ArrayT>
   void operator()(ArrayT* array)
   {
     const auto range = vtk::DataArrayValueRange<1>(array);
     const std::int64_t count = static_cast<std::int64_t>(range.size());
-    if (count == 0)
+    const std::int64_t rows = (count + this->RowLength - 1) / this->RowLength;
+    if (this->Fill)
     {
-      return;
+      this->Ends.assign(static_cast<std::size_t>(rows), { -1, -1 });
     }
-    // The range, and the first value that is not a label (the one the message names, as a
-    // scan in order would find it), on the threads.
-    std::int64_t lowest = std::numeric_limits<std::int64_t>::max();
-    std::int64_t highest = std::numeric_limits<std::int64_t>::min();
+    const int threads = cbc3d::ThreadCount(this->Threads);
+    std::vector<DistinctLabels> seen(static_cast<std::size_t>(threads));
     std::int64_t firstRefused = count;
-#pragma omp parallel for schedule(static) num_threads(cbc3d::ThreadCount(this->Threads)) \
-  reduction(min : lowest, firstRefused) reduction(max : highest)
-    for (std::int64_t i = 0; i < count; ++i)
+#pragma omp parallel num_threads(threads) reduction(min : firstRefused)
     {
-      std::int64_t label = 0;
-      if (!ToLabelValue(range[i], label))
+      DistinctLabels& mine = seen[static_cast<std::size_t>(omp_get_thread_num())];
+#pragma omp for schedule(static)
+      for (std::int64_t r = 0; r < rows; ++r)
       {
-        firstRefused = std::min(firstRefused, i);
-        continue;
+        const std::int64_t begin = r * this->RowLength;
+        const std::int64_t end = std::min(count, begin + this->RowLength);
+        firstRefused = std::min(firstRefused, this->SurveyRow(range, begin, end, mine, r));
       }
-      lowest = std::min(lowest, label);
-      highest = std::max(highest, label);
     }
     if (firstRefused < count)
     {
       this->Error = Refusal(range[firstRefused]);
       return;
     }
-    if (highest / 2 - lowest / 2 < LongestPresenceTable / 2)
+    for (DistinctLabels& labels : seen)
     {
-      this->AddPresent(range, lowest, highest);
-      return;
+      this->Values.insert(this->Values.end(), labels.Seen.begin(), labels.Seen.end());
     }
-    std::vector<std::int64_t> all;
-    all.reserve(range.size());
-    std::int64_t label = 0;
-    for (const auto value : range)
-    {
-      ToLabelValue(value, label);
-      all.push_back(label);
-    }
-    std::sort(all.begin(), all.end());
-    all.erase(std::unique(all.begin(), all.end()), all.end());
-    this->Values->insert(this->Values->end(), all.begin(), all.end());
+    std::sort(this->Values.begin(), this->Values.end());
+    this->Values.erase(std::unique(this->Values.begin(), this->Values.end()), this->Values.end());
   }
 
-  // Appends the values present, in ascending order, through one table of the range per thread.
+  // Values begin..end-1, row r; returns the first that is not a label, or the range's size.
   template <typename Range>
-  void AddPresent(const Range& range, std::int64_t lowest, std::int64_t highest)
+  std::int64_t SurveyRow(const Range& range, std::int64_t begin, std::int64_t end, DistinctLabels& seen, std::int64_t r)
   {
-    const std::size_t span = static_cast<std::size_t>(highest - lowest + 1);
-    const std::int64_t count = static_cast<std::int64_t>(range.size());
-    std::vector<char> present(span, 0);
-#pragma omp parallel num_threads(cbc3d::ThreadCount(this->Threads))
+    std::int64_t firstRefused = static_cast<std::int64_t>(range.size());
+    int first = -1, last = -1;
+    auto previous = range[begin];
+    bool isFill = false;
+    for (std::int64_t i = begin; i < end; ++i)
     {
-      std::vector<char> mine(span, 0);
-      std::int64_t label = 0;
-#pragma omp for schedule(static) nowait
-      for (std::int64_t i = 0; i < count; ++i)
+      const auto value = range[i];
+      if (i == begin || !(value == previous))
       {
-        ToLabelValue(range[i], label);
-        mine[static_cast<std::size_t>(label - lowest)] = 1;
+        previous = value;
+        std::int64_t label = 0;
+        if (!ToLabelValue(value, label))
+        {
+          firstRefused = std::min(firstRefused, i);
+          isFill = false;
+          continue;
+        }
+        seen.Add(label);
+        isFill = this->Fill && label == *this->Fill;
       }
-#pragma omp critical
-      for (std::size_t offset = 0; offset < span; ++offset)
-        present[offset] |= mine[offset];
+      if (!isFill)
+      {
+        first = first < 0 ? int(i - begin) : first;
+        last = int(i - begin);
+      }
     }
-    for (std::size_t offset = 0; offset < span; ++offset)
-      if (present[offset])
-        this->Values->push_back(lowest + static_cast<std::int64_t>(offset));
+    if (this->Fill)
+    {
+      this->Ends[static_cast<std::size_t>(r)] = { first, last };
+    }
+    return firstRefused;
   }
 };
 
@@ -186,15 +217,24 @@ struct BoxRows
 };
 
 // Writes the codes of the values of `range` from `out` on; false for a value the codes lack.
+// A value equal to the one before it takes its code without a search.
 template <typename Range>
 bool EncodeRange(const Range& range, const cbc3d::LabelCodes& codes, std::int32_t*& out)
 {
-  for (const auto value : range)
+  const auto end = range.end();
+  auto it = range.begin();
+  while (it != end)
   {
+    const auto value = *it;
     std::int64_t label = 0;
-    if (!ToLabelValue(value, label) || !codes.FindCode(label, *out++))
+    std::int32_t code = 0;
+    if (!ToLabelValue(value, label) || !codes.FindCode(label, code))
     {
       return false;
+    }
+    for (; it != end && *it == value; ++it)
+    {
+      *out++ = code;
     }
   }
   return true;
@@ -230,61 +270,53 @@ struct Encode
   }
 };
 
-struct FindBox
+// Runs the survey over the array (of any type) and appends its values; false with its message.
+bool RunSurvey(vtkDataArray* array, Survey& survey, std::vector<std::int64_t>& values, std::string& error)
 {
-  BoxRows Whole;
-  std::int64_t Fill = 0;
-  std::array<int, 3> Lower, Upper;
-
-  template <typename ArrayT>
-  void operator()(ArrayT* array)
+  if (!vtkArrayDispatch::Dispatch::Execute(array, survey))
   {
-    // Each row's first and last voxel that is not Fill, gathered per row and then combined:
-    // min and max in any order are the same.
-    const std::int64_t rows = std::int64_t(this->Whole.Size[1]) * this->Whole.Size[2];
-    std::vector<std::array<int, 2>> ends(rows, { -1, -1 });
-    this->Whole.ForEach(array, [&](const auto& row, std::int64_t r, int, int) {
-      auto isFill = [&](auto value) {
-        std::int64_t label = 0;
-        return ToLabelValue(value, label) && label == this->Fill;
-      };
-      const auto first = std::find_if_not(row.begin(), row.end(), isFill);
-      if (first == row.end())
-        return true;
-      auto end = row.end();
-      do
-        --end;
-      while (isFill(*end));
-      ends[r] = { int(first - row.begin()), int(end - row.begin()) };
-      return true;
-    });
-    this->Lower = this->Whole.Dimensions;
-    this->Upper = { -1, -1, -1 };
-    for (std::int64_t r = 0; r < rows; ++r)
-    {
-      if (ends[r][0] < 0)
-        continue;
-      const int j = int(r % this->Whole.Size[1]), k = int(r / this->Whole.Size[1]);
-      this->Lower = { std::min(this->Lower[0], ends[r][0]), std::min(this->Lower[1], j), std::min(this->Lower[2], k) };
-      this->Upper = { std::max(this->Upper[0], ends[r][1]), std::max(this->Upper[1], j), std::max(this->Upper[2], k) };
-    }
+    survey(array); // arrays the dispatcher does not know, through the generic API
   }
-};
+  error = survey.Error;
+  values.insert(values.end(), survey.Values.begin(), survey.Values.end());
+  return error.empty();
+}
 } // namespace
 
 namespace vtkCBC3DLabelValues
 {
 bool CollectValues(vtkDataArray* array, std::vector<std::int64_t>& values, std::string& error, int threads)
 {
-  Collect collect;
-  collect.Values = &values;
-  collect.Threads = threads;
-  if (!vtkArrayDispatch::Dispatch::Execute(array, collect))
+  Survey survey;
+  survey.RowLength = std::int64_t(1) << 16; // pieces for the threads
+  survey.Threads = threads;
+  return RunSurvey(array, survey, values, error);
+}
+
+bool CollectImageValues(vtkDataArray* array, const std::array<int, 3>& dimensions, std::int64_t fill,
+  std::vector<std::int64_t>& values, std::string& error, std::array<int, 3>& lower, std::array<int, 3>& upper,
+  int threads)
+{
+  Survey survey;
+  survey.RowLength = std::max(dimensions[0], 1);
+  survey.Fill = &fill;
+  survey.Threads = threads;
+  if (!RunSurvey(array, survey, values, error))
   {
-    collect(array); // arrays the dispatcher does not know, through the generic API
+    return false;
   }
-  error = collect.Error;
-  return error.empty();
+  lower = dimensions;
+  upper = { -1, -1, -1 };
+  const int rowsPerSlice = std::max(dimensions[1], 1);
+  for (std::size_t r = 0; r < survey.Ends.size(); ++r)
+  {
+    if (survey.Ends[r][0] < 0)
+      continue;
+    const int j = int(r % rowsPerSlice), k = int(r / rowsPerSlice);
+    lower = { std::min(lower[0], survey.Ends[r][0]), std::min(lower[1], j), std::min(lower[2], k) };
+    upper = { std::max(upper[0], survey.Ends[r][1]), std::max(upper[1], j), std::max(upper[2], k) };
+  }
+  return true;
 }
 
 bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, std::int32_t* out)
@@ -312,25 +344,6 @@ bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, const std::arr
     encode(array);
   }
   return encode.Ok;
-}
-
-bool OtherValuesBox(vtkDataArray* array, const std::array<int, 3>& dimensions, std::int64_t fill,
-  std::array<int, 3>& lower, std::array<int, 3>& upper, int threads)
-{
-  FindBox find;
-  find.Whole = BoxRows{ dimensions, { 0, 0, 0 }, dimensions, threads };
-  find.Fill = fill;
-  if (!vtkArrayDispatch::Dispatch::Execute(array, find))
-  {
-    find(array);
-  }
-  if (find.Upper[0] < 0)
-  {
-    return false; // lower and upper as they were
-  }
-  lower = find.Lower;
-  upper = find.Upper;
-  return true;
 }
 
 vtkSmartPointer<vtkDataArray> FromCodes(const std::vector<std::int32_t>& labels,

@@ -39,13 +39,13 @@ bool CollectValues(vtkDataArray* array, std::vector<std::int64_t>& values, std::
 bool ToCodes(vtkDataArray* array, const cbc3d::LabelCodes& codes, std::int32_t* out);
 
 /**
- * The box (inclusive, x fastest over `dimensions`) of the voxels whose value is not `fill`: each
- * row is read from both ends up to its first and last such voxel. False when every voxel holds
- * `fill` (then `lower` and `upper` are left as they were). The values must have passed
- * CollectValues.
+ * CollectValues over an image of `dimensions` (x fastest) that also finds, in the same pass, the
+ * box (inclusive) of the voxels whose value is not `fill`: `upper` is { -1, -1, -1 } when every
+ * voxel holds `fill`.
  */
-bool OtherValuesBox(vtkDataArray* array, const std::array<int, 3>& dimensions, std::int64_t fill,
-  std::array<int, 3>& lower, std::array<int, 3>& upper, int threads = 1);
+bool CollectImageValues(vtkDataArray* array, const std::array<int, 3>& dimensions, std::int64_t fill,
+  std::vector<std::int64_t>& values, std::string& error, std::array<int, 3>& lower, std::array<int, 3>& upper,
+  int threads = 1);
 
 /// ToCodes over the box of `size` voxels from `lower` of an image of `dimensions`: the codes of
 /// its voxels, x fastest, into `out`.

@@ -69,6 +69,19 @@ int TestCBC3DLabelConversion(int, char*[])
               << "," << serial.StoredSize[2] << "\n";
     return 1;
   }
+  // Every stored voxel holds its value in the array (runs of one value share one lookup).
+  for (int k = 0; k < serial.StoredSize[2]; ++k)
+    for (int j = 0; j < serial.StoredSize[1]; ++j)
+      for (int i = 0; i < serial.StoredSize[0]; ++i)
+      {
+        const std::int32_t code = serial.Labels[i + serial.StoredSize[0] * (j + std::size_t(serial.StoredSize[1]) * k)];
+        const int x = i + serial.StoredLower[0], y = j + serial.StoredLower[1], z = k + serial.StoredLower[2];
+        if (serial.Codes.ValueOf(code) != static_cast<std::int64_t>(labels->GetComponent(x + 37 * (y + 29 * z), 0)))
+        {
+          std::cerr << "voxel " << x << "," << y << "," << z << " holds " << serial.Codes.ValueOf(code) << "\n";
+          return 1;
+        }
+      }
   for (const int threads : { 2, 3, 0 })
   {
     cbc3d::LabelImage parallel;
