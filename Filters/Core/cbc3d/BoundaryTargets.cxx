@@ -68,7 +68,26 @@ std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, const T
 {
   const auto& d = image.Dimensions;
   const auto blocked = BlockedOffsets(pattern);
-  std::vector<char> allowed(image.Labels.size(), 1);
+  // Whether each boundary voxel may still be taken, per tissue in its list's order: only
+  // boundary voxels are ever looked at, so no flag per voxel of the image (107 MB on the brain
+  // upsampled 4x per axis).
+  std::map<std::int32_t, std::vector<char>> allowed;
+  for (const auto& [tissue, voxels] : boundary)
+  {
+    allowed[tissue].assign(voxels.size(), 1);
+  }
+  auto block = [&](std::int64_t voxel) {
+    const auto list = boundary.find(image.Labels[voxel]);
+    if (list == boundary.end())
+    {
+      return; // not a tissue voxel
+    }
+    const auto at = std::lower_bound(list->second.begin(), list->second.end(), voxel);
+    if (at != list->second.end() && *at == voxel)
+    {
+      allowed[list->first][at - list->second.begin()] = 0;
+    }
+  };
   std::set<LabelSet> earlierTissues;
   std::vector<BoundaryTarget> targets;
   auto labelOf = [&](int i, int j, int k) {
@@ -84,9 +103,11 @@ std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, const T
   for (const auto& [tissue, voxels] : boundary)
   {
     std::set<LabelSet> thisTissue;
-    for (const std::int64_t voxel : voxels)
+    const std::vector<char>& open = allowed[tissue];
+    for (std::size_t v = 0; v < voxels.size(); ++v)
     {
-      if (!allowed[voxel])
+      const std::int64_t voxel = voxels[v];
+      if (!open[v])
       {
         continue;
       }
@@ -113,7 +134,7 @@ std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, const T
         const int ni = i + o[0], nj = j + o[1], nk = k + o[2];
         if (image.IsStored(ni, nj, nk))
         {
-          allowed[image.VoxelIndex(ni, nj, nk)] = 0;
+          block(image.VoxelIndex(ni, nj, nk));
         }
       }
     }
