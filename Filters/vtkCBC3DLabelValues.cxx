@@ -98,7 +98,7 @@ private:
 // One pass over the values as rows of RowLength (x fastest), on the threads: the distinct
 // labels, the first value that is not a label (the one a message names, as a scan in order
 // would find it) and, when Fill is set, each row's first and last value that is not Fill.
-// A value equal to the one before it is not converted again: runs of one label are the rule.
+// The values are taken run by run (runs of one label are the rule), each run converted once.
 struct Survey
 {
   std::int64_t RowLength = 1;
@@ -145,34 +145,31 @@ struct Survey
     this->Values.erase(std::unique(this->Values.begin(), this->Values.end()), this->Values.end());
   }
 
-  // Values begin..end-1, row r; returns the first that is not a label, or the range's size.
+  // Values begin..end-1, row r, run by run; returns the first that is not a label, or the
+  // range's size.
   template <typename Range>
   std::int64_t SurveyRow(const Range& range, std::int64_t begin, std::int64_t end, DistinctLabels& seen, std::int64_t r)
   {
     std::int64_t firstRefused = static_cast<std::int64_t>(range.size());
     int first = -1, last = -1;
-    auto previous = range[begin];
-    bool isFill = false;
-    for (std::int64_t i = begin; i < end; ++i)
+    for (std::int64_t i = begin; i < end;)
     {
       const auto value = range[i];
-      if (i == begin || !(value == previous))
+      const std::int64_t runStart = i;
+      do
+        ++i;
+      while (i < end && range[i] == value); // a NaN is a run of one
+      std::int64_t label = 0;
+      if (!ToLabelValue(value, label))
       {
-        previous = value;
-        std::int64_t label = 0;
-        if (!ToLabelValue(value, label))
-        {
-          firstRefused = std::min(firstRefused, i);
-          isFill = false;
-          continue;
-        }
-        seen.Add(label);
-        isFill = this->Fill && label == *this->Fill;
+        firstRefused = std::min(firstRefused, runStart);
+        continue;
       }
-      if (!isFill)
+      seen.Add(label);
+      if (!this->Fill || label != *this->Fill)
       {
-        first = first < 0 ? int(i - begin) : first;
-        last = int(i - begin);
+        first = first < 0 ? int(runStart - begin) : first;
+        last = int(i - 1 - begin);
       }
     }
     if (this->Fill)
