@@ -159,7 +159,7 @@ bool PointGrid::GroupByCell(const std::vector<Eigen::Vector3d>& queries, QueryGr
 }
 
 void PointGrid::GroupCandidates(const std::vector<Eigen::Vector3d>& queries, const QueryGroups& groups,
-  std::int64_t g, double radius, std::vector<int>& candidates) const
+  std::int64_t g, double radius, GroupSearch& search) const
 {
   Eigen::Vector3d lower = queries[groups.Order[groups.Start[g]]], upper = lower;
   for (int i = groups.Start[g] + 1; i < groups.Start[g + 1]; ++i)
@@ -175,7 +175,15 @@ void PointGrid::GroupCandidates(const std::vector<Eigen::Vector3d>& queries, con
   const double reach = std::isinf(radius) ? (this->Points[this->NearestAny(centre)] - centre).norm() + 2.0 * h
                                           : radius + h;
   const double scale = std::max({ centre.cwiseAbs().maxCoeff(), this->Origin.cwiseAbs().maxCoeff(), reach });
-  this->PointsNear(centre, reach + 1e-9 * scale, candidates);
+  this->PointsNear(centre, reach + 1e-9 * scale, search.Near);
+  search.Centre = centre;
+  search.Slack = 1e-9 * scale; // far beyond the rounding of these distances
+  search.Candidates.clear();
+  for (const int index : search.Near)
+  {
+    search.Candidates.push_back({ (this->Points[index] - centre).norm(), index, this->Points[index] });
+  }
+  std::sort(search.Candidates.begin(), search.Candidates.end());
 }
 
 std::vector<int> PointGrid::NearestAnyOfAll(const std::vector<Eigen::Vector3d>& queries, int threads) const

@@ -77,9 +77,30 @@ private:
   // shared search to pay.
   bool GroupByCell(const std::vector<Eigen::Vector3d>& queries, QueryGroups& groups) const;
 
+  // The points that can answer a query of one group, nearest its centre first: a query e from
+  // the centre is at least FromCentre - e from each, so its search ends at the first that is
+  // farther than its best so far by that bound (less Slack, for rounding).
+  struct Candidate
+  {
+    double FromCentre;
+    int Index;
+    Eigen::Vector3d Point;
+    bool operator<(const Candidate& other) const
+    {
+      return this->FromCentre < other.FromCentre || (this->FromCentre == other.FromCentre && this->Index < other.Index);
+    }
+  };
+  struct GroupSearch
+  {
+    Eigen::Vector3d Centre;
+    double Slack;
+    std::vector<int> Near;
+    std::vector<Candidate> Candidates;
+  };
+
   // The points that can answer a query of group g within `radius` (infinite: NearestAny).
   void GroupCandidates(const std::vector<Eigen::Vector3d>& queries, const QueryGroups& groups,
-    std::int64_t g, double radius, std::vector<int>& candidates) const;
+    std::int64_t g, double radius, GroupSearch& search) const;
 
   // The cell of x along each axis, not clamped: x lies inside it even when outside the grid.
   Eigen::Matrix<std::int64_t, 3, 1> QueryCellOf(const Eigen::Vector3d& x) const;
@@ -153,19 +174,24 @@ std::vector<int> PointGrid::NearestOfAll(
   const std::int64_t groupCount = static_cast<std::int64_t>(groups.Start.size()) - 1;
 #pragma omp parallel num_threads(ThreadCount(threads))
   {
-    std::vector<int> candidates;
+    GroupSearch search;
 #pragma omp for schedule(dynamic, 16)
     for (std::int64_t g = 0; g < groupCount; ++g)
     {
-      this->GroupCandidates(queries, groups, g, radius, candidates);
+      this->GroupCandidates(queries, groups, g, radius, search);
       for (int i = groups.Start[g]; i < groups.Start[g + 1]; ++i)
       {
         // As ScanRow compares: the nearest accepted, the lower index on a tie.
         const std::int64_t q = groups.Order[i];
+        const double fromCentre = (queries[q] - search.Centre).norm() + search.Slack;
         Best best{ -1, radius * radius };
-        for (const int index : candidates)
+        for (const Candidate& candidate : search.Candidates)
         {
-          const double distance = (this->Points[index] - queries[q]).squaredNorm();
+          const double atLeast = candidate.FromCentre - fromCentre;
+          if (atLeast > 0.0 && atLeast * atLeast > best.Distance)
+            break; // this one and all after it are farther than the best
+          const double distance = (candidate.Point - queries[q]).squaredNorm();
+          const int index = candidate.Index;
           if ((distance < best.Distance || (distance == best.Distance && (best.Index < 0 || index < best.Index))) &&
             accept(q, index))
             best = Best{ index, distance };
