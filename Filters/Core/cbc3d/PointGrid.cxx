@@ -53,24 +53,42 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell)
   }
 }
 
+namespace
+{
+// floor(t) clamped to [lowest, highest], 0 for NaN: std::floor is a library call on the
+// baseline x86-64 instruction set, and this runs for every query and point.
+std::int64_t ClampedFloor(double t, std::int64_t lowest, std::int64_t highest)
+{
+  if (!(t > double(lowest)))
+  {
+    return t <= double(lowest) ? lowest : 0; // below the range, or NaN
+  }
+  if (t >= double(highest))
+  {
+    return highest;
+  }
+  const std::int64_t truncated = static_cast<std::int64_t>(t); // towards zero
+  return truncated > t ? truncated - 1 : truncated;
+}
+} // namespace
+
 Eigen::Vector3i PointGrid::CellOf(const Eigen::Vector3d& x) const
 {
   Eigen::Vector3i c;
   for (int a = 0; a < 3; ++a)
   {
-    const double f = std::floor((x[a] - this->Origin[a]) / this->Cell);
-    c[a] = static_cast<int>(std::clamp(f, 0.0, double(this->Size[a] - 1)));
+    c[a] = static_cast<int>(ClampedFloor((x[a] - this->Origin[a]) / this->Cell, 0, this->Size[a] - 1));
   }
   return c;
 }
 
 Eigen::Matrix<std::int64_t, 3, 1> PointGrid::QueryCellOf(const Eigen::Vector3d& x) const
 {
+  constexpr std::int64_t far = 1000000000;
   Eigen::Matrix<std::int64_t, 3, 1> c;
   for (int a = 0; a < 3; ++a)
   {
-    const double f = std::floor((x[a] - this->Origin[a]) / this->Cell);
-    c[a] = std::isnan(f) ? 0 : static_cast<std::int64_t>(std::clamp(f, -1e9, 1e9));
+    c[a] = ClampedFloor((x[a] - this->Origin[a]) / this->Cell, -far, far);
   }
   return c;
 }
