@@ -71,15 +71,14 @@ void Matcher::Match(const std::vector<Eigen::Vector3d>& x, std::vector<Eigen::Ve
     sourcePoints[s] = x[sources.Points[s]];
   }
   const PointGrid sourceGrid(sourcePoints, this->Cell);
-  std::vector<int> nearestSource(targetCount);
-#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
-  for (std::int64_t t = 0; t < targetCount; ++t)
-  {
-    nearestSource[t] = sourceGrid.Nearest(this->TargetPoints[t], 2.0 * this->LargestSize, [&](int s) {
+  // Targets are denser than sources on fine images: NearestOfAll shares one candidate list
+  // among the targets of a cell.
+  const std::vector<int> nearestSource = sourceGrid.NearestOfAll(this->TargetPoints, 2.0 * this->LargestSize,
+    [&](std::int64_t t, int s) {
       return this->Accepts(s, t) &&
         (this->TargetPoints[t] - sourcePoints[s]).norm() <= 2.0 * sources.LocalSize[sources.Points[s]];
-    });
-  }
+    },
+    this->Threads);
   std::vector<Eigen::Vector3d> goalSum(sourceCount, Eigen::Vector3d::Zero());
   std::vector<int> goalCount(sourceCount, 0);
   for (std::int64_t t = 0; t < targetCount; ++t)
