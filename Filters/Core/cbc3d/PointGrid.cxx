@@ -150,7 +150,7 @@ void PointGrid::PointsNear(const Eigen::Vector3d& x, double radius, std::vector<
     }
 }
 
-bool PointGrid::GroupByCell(const std::vector<Eigen::Vector3d>& queries, QueryGroups& groups) const
+bool PointGrid::GroupByCell(const std::vector<Eigen::Vector3d>& queries, int minimumPerCell, QueryGroups& groups) const
 {
   const std::int64_t count = static_cast<std::int64_t>(queries.size());
   const std::int64_t cells = static_cast<std::int64_t>(this->CellStart.size()) - 1;
@@ -168,7 +168,7 @@ bool PointGrid::GroupByCell(const std::vector<Eigen::Vector3d>& queries, QueryGr
       groups.Start.push_back(start[c] + start[c + 1]);
     start[c + 1] += start[c];
   }
-  if (count < 4 * static_cast<std::int64_t>(groups.Start.size() - 1))
+  if (count < minimumPerCell * static_cast<std::int64_t>(groups.Start.size() - 1))
     return false; // too few queries per cell to share a search
   groups.Order.resize(queries.size());
   for (std::int64_t i = 0; i < count; ++i)
