@@ -227,10 +227,14 @@ bool RedGreenMesh::Close(const std::function<bool()>& keepGoing)
 }
 
 bool RedGreenMesh::BuildConforming(std::vector<Tet>& tets, std::vector<std::int64_t>& source,
-  const std::function<bool()>& keepGoing) const
+  const std::function<bool()>& keepGoing, std::vector<std::uint8_t>* leafMasks) const
 {
   tets.clear();
   source.clear();
+  if (leafMasks)
+  {
+    leafMasks->assign(this->RedList.size(), NotLeaf);
+  }
   for (std::size_t red = 0; red < this->RedList.size(); ++red)
   {
     if (StopAt(red, keepGoing))
@@ -252,6 +256,10 @@ bool RedGreenMesh::BuildConforming(std::vector<Tet>& tets, std::vector<std::int6
     {
       local[4 + e] = this->FindMidpoint(tet[TetEdges[e][0]], tet[TetEdges[e][1]]);
       mask |= local[4 + e] >= 0 ? static_cast<std::uint8_t>(1u << e) : 0;
+    }
+    if (leafMasks)
+    {
+      (*leafMasks)[red] = mask;
     }
     for (const LocalTet& child : *GreenClosure(mask))
     {

@@ -40,60 +40,88 @@ struct LabelledMesh
   std::vector<LabelCounts> Counts;
   std::vector<char> HoldsVoxelCentres; // counts are whole voxels (else sub-samples)
   std::vector<std::int32_t> Labels;
-  std::vector<std::int32_t> VoxelOwner; // final tet owning each voxel centre, or -1
+
+  // The tet owning each voxel centre, as an owner id (-1: none), and the tet of each id. Ids
+  // outlive passes: a tet that a pass leaves as it was keeps its id and its voxels' entries,
+  // so only the voxels of new tets are written again.
+  std::vector<std::int32_t> VoxelOwner;
+  std::vector<std::int32_t> OwnerTet;
+  std::int32_t OwnerOf(std::int64_t voxel) const
+  {
+    const std::int32_t id = this->VoxelOwner[voxel];
+    return id < 0 ? -1 : this->OwnerTet[id];
+  }
+
+  // What the last pass sampled, per red: its split mask as a leaf (RedGreenMesh::NotLeaf if
+  // none), its first tet and that tet's owner id. A leaf with the same mask makes the same
+  // tets, whose samples are taken over.
+  std::vector<std::uint8_t> LeafMask;
+  std::vector<std::int64_t> FirstTet;
+  std::vector<std::int32_t> FirstOwner;
 };
 
-// Sets every voxel's owner to none. The first time the whole image; after that only the index
-// box of the mesh's points, the only voxels a tet can have claimed (the points only grow in
-// number, never beyond the lattice), so a padded image does not cost a whole-image fill a pass.
-void ClearVoxelOwners(const LabelImage& image, const std::vector<Eigen::Vector3d>& points,
-  std::vector<std::int32_t>& voxelOwner)
+// Where each tet's samples come from: the last pass's tet (-1: sampled now), and its owner id.
+// New tets get new ids, after `nextOwner`.
+void MatchLastPass(const LabelledMesh& mesh, const std::vector<std::uint8_t>& masks, std::int32_t nextOwner,
+  std::vector<std::int64_t>& takenFrom, std::vector<std::int32_t>& owner, std::vector<std::int64_t>& firstTet,
+  std::vector<std::int32_t>& firstOwner)
 {
-  if (voxelOwner.size() != image.Labels.size())
+  const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
+  takenFrom.assign(count, -1);
+  owner.assign(count, -1);
+  firstTet.assign(masks.size(), -1);
+  firstOwner.assign(masks.size(), -1);
+  for (std::int64_t t = 0; t < count; ++t)
   {
-    voxelOwner.assign(image.Labels.size(), -1);
-    return;
-  }
-  Eigen::Vector3d lower = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector3d upper = -lower;
-  for (const Eigen::Vector3d& point : points)
-  {
-    const Eigen::Vector3d index = image.WorldToIndex(point);
-    lower = lower.cwiseMin(index);
-    upper = upper.cwiseMax(index);
-  }
-  // The owners are indexed like the stored labels: only the stored box has any.
-  const std::array<int, 3> storedUpper = image.StoredUpper();
-  std::array<std::int64_t, 3> first, last;
-  for (int a = 0; a < 3; ++a)
-  {
-    first[a] = std::clamp<std::int64_t>(
-      static_cast<std::int64_t>(std::floor(lower[a])) - 1, image.StoredLower[a], storedUpper[a]);
-    last[a] = std::clamp<std::int64_t>(
-      static_cast<std::int64_t>(std::ceil(upper[a])) + 1, image.StoredLower[a], storedUpper[a]);
-  }
-  for (std::int64_t k = first[2]; k <= last[2]; ++k)
-    for (std::int64_t j = first[1]; j <= last[1]; ++j)
+    const std::int64_t red = mesh.Source[t];
+    const bool first = firstTet[red] < 0;
+    if (first)
     {
-      std::int32_t* row = voxelOwner.data() + image.VoxelIndex(int(first[0]), int(j), int(k));
-      std::fill(row, row + (last[0] - first[0]) + 1, -1);
+      firstTet[red] = t;
     }
+    const std::int64_t k = t - firstTet[red];
+    if (static_cast<std::size_t>(red) < mesh.LeafMask.size() && mesh.LeafMask[red] == masks[red])
+    {
+      takenFrom[t] = mesh.FirstTet[red] + k;
+      owner[t] = mesh.FirstOwner[red] + static_cast<std::int32_t>(k);
+    }
+    else
+    {
+      owner[t] = nextOwner++;
+    }
+    if (first)
+    {
+      firstOwner[red] = owner[t];
+    }
+  }
 }
 
 // Returns false when `keepGoing` (polled from thread 0) asked to stop.
 bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threads,
   LabelledMesh& mesh, const std::function<bool()>& keepGoing)
 {
-  if (!hierarchy.BuildConforming(mesh.Tets, mesh.Source, keepGoing))
+  std::vector<std::uint8_t> masks;
+  if (!hierarchy.BuildConforming(mesh.Tets, mesh.Source, keepGoing, &masks))
   {
     return false;
   }
-  std::atomic<bool> stop(false);
   const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
-  mesh.Counts.resize(count);
+  const std::int64_t ids = static_cast<std::int64_t>(mesh.OwnerTet.size());
+  if (mesh.VoxelOwner.size() != image.Labels.size() || ids + count > std::numeric_limits<std::int32_t>::max())
+  {
+    mesh.VoxelOwner.assign(image.Labels.size(), -1); // the first pass, or ids running out
+    mesh.OwnerTet.clear();
+    mesh.LeafMask.clear();
+  }
+  std::vector<std::int64_t> takenFrom, firstTet;
+  std::vector<std::int32_t> owner, firstOwner;
+  MatchLastPass(mesh, masks, static_cast<std::int32_t>(mesh.OwnerTet.size()), takenFrom, owner, firstTet, firstOwner);
+  std::vector<LabelCounts> lastCounts = std::move(mesh.Counts);
+  std::vector<char> lastHolds = std::move(mesh.HoldsVoxelCentres);
+  mesh.Counts.assign(count, LabelCounts());
   mesh.HoldsVoxelCentres.assign(count, 0);
   mesh.Labels.assign(count, NoLabel);
-  ClearVoxelOwners(image, hierarchy.Points(), mesh.VoxelOwner);
+  std::atomic<bool> stop(false);
   const auto& points = hierarchy.Points();
 #pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(threads))
   for (std::int64_t t = 0; t < count; ++t)
@@ -106,16 +134,54 @@ bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threa
     {
       stop.store(true);
     }
-    const Tet& tet = mesh.Tets[t];
-    mesh.HoldsVoxelCentres[t] = 1 ==
-      SampleTetLabels(image, { points[tet[0]], points[tet[1]], points[tet[2]], points[tet[3]] },
-        mesh.Counts[t], static_cast<std::int32_t>(t), mesh.VoxelOwner.data());
+    if (takenFrom[t] >= 0)
+    {
+      mesh.Counts[t] = std::move(lastCounts[takenFrom[t]]);
+      mesh.HoldsVoxelCentres[t] = lastHolds[takenFrom[t]];
+    }
+    else
+    {
+      const Tet& tet = mesh.Tets[t];
+      mesh.HoldsVoxelCentres[t] = 1 ==
+        SampleTetLabels(image, { points[tet[0]], points[tet[1]], points[tet[2]], points[tet[3]] },
+          mesh.Counts[t], owner[t], mesh.VoxelOwner.data());
+    }
     std::int32_t label = NoLabel;
     mesh.Counts[t].Majority(image, label);
     mesh.Labels[t] = label;
   }
+  if (stop.load())
+  {
+    mesh.VoxelOwner.clear(); // the owners are a mix of two passes: a next pass starts afresh
+    return false;
+  }
+  // Ids of tets gone (their voxels all taken by new tets) lead nowhere.
+  mesh.OwnerTet.assign(owner.empty() ? 0 : static_cast<std::size_t>(*std::max_element(owner.begin(), owner.end())) + 1, -1);
+  for (std::int64_t t = 0; t < count; ++t)
+  {
+    mesh.OwnerTet[owner[t]] = static_cast<std::int32_t>(t);
+  }
+  mesh.LeafMask = std::move(masks);
+  mesh.FirstTet = std::move(firstTet);
+  mesh.FirstOwner = std::move(firstOwner);
   // Thread 0 may have had no turn to poll (a small mesh, a busy machine): ask once more.
-  return !stop.load() && keepGoing();
+  return keepGoing();
+}
+
+// After the passes: every voxel's owner as its tet, and each tet its own id.
+void ResolveOwners(LabelledMesh& mesh, int threads)
+{
+  const std::int64_t voxels = static_cast<std::int64_t>(mesh.VoxelOwner.size());
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
+  for (std::int64_t v = 0; v < voxels; ++v)
+  {
+    mesh.VoxelOwner[v] = mesh.OwnerOf(v);
+  }
+  mesh.OwnerTet.resize(mesh.Tets.size());
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    mesh.OwnerTet[t] = static_cast<std::int32_t>(t);
+  }
 }
 
 // Per tissue label, the voxel centres in its tets and those of them of its label (whole
@@ -173,7 +239,7 @@ std::map<std::int32_t, TissueFidelity> MeasureFidelity(const LabelImage& image,
     const std::int32_t component = components.Runs[r].Component;
     for (std::int64_t v = components.Runs[r].First; v <= components.Runs[r].Last; ++v)
     {
-      const std::int32_t owner = mesh.VoxelOwner[v];
+      const std::int32_t owner = mesh.OwnerOf(v);
       if (owner >= 0 && mesh.Labels[owner] == components.Label[component])
       {
 #pragma omp atomic write
@@ -221,7 +287,7 @@ std::map<std::int64_t, std::int32_t> PinComponents(const LabelImage& image,
   std::vector<std::vector<std::int32_t>> fewHolders(count);
   std::map<std::int32_t, std::map<std::int32_t, std::int64_t>> missing; // component -> tet -> voxels
   components.ForEachVoxel([&](std::int64_t v, std::int32_t component) {
-    const std::int32_t owner = mesh.VoxelOwner[v];
+    const std::int32_t owner = mesh.OwnerOf(v);
     if (owner < 0 || IsSmall(components, component, minimumVoxels))
     {
       return;
@@ -320,9 +386,9 @@ std::vector<char> MarkForFidelity(const LabelImage& image, const TissueComponent
   }
   components.ForEachVoxel([&](std::int64_t v, std::int32_t component) {
     if (!componentInMesh[component] &&
-      !IsSmall(components, component, params.MinimumComponentVoxels) && mesh.VoxelOwner[v] >= 0)
+      !IsSmall(components, component, params.MinimumComponentVoxels) && mesh.OwnerOf(v) >= 0)
     {
-      marked[mesh.Source[mesh.VoxelOwner[v]]] = 1;
+      marked[mesh.Source[mesh.OwnerOf(v)]] = 1;
     }
   });
   return marked;
@@ -556,6 +622,7 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
     ++result.Passes;
   }
 
+  ResolveOwners(mesh, params.NumberOfThreads);
   // Spikes on the surface would keep their tips off the image boundary through deformation.
   const auto across = FaceNeighbours(mesh.Tets, hierarchy.Points().size(), params.NumberOfThreads);
   if (RemoveSurfaceEars(mesh.Tets, across, hierarchy.Points().size(), mesh.Labels,

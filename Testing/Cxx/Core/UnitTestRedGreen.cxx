@@ -347,3 +347,50 @@ TEST(EdgeMidpoints, FindsWhatWasStoredThroughGrowthAndNothingElse)
   }
   EXPECT_EQ(table.Find((std::uint64_t{ 200000 } << 32) | 200001), -1);
 }
+
+TEST(RedGreenMesh, ALeafWithTheSameMaskBuildsTheSameTets)
+{
+  // Refinement takes over the samples of a leaf whose split edges did not change between two
+  // builds: such a leaf must make the same tets, in the same order; a leaf whose mask changed
+  // is reported with its new mask, and a red split is no longer a leaf.
+  const cbc3d::TetMesh roots = cbc3d::testing::KuhnGrid(
+    3, 3, 3, [](int, int, int) { return true; }, [](int, int, int, int) { return 1; });
+  cbc3d::RedGreenMesh mesh(roots);
+  mesh.Close();
+  std::vector<cbc3d::Tet> before, after;
+  std::vector<std::int64_t> sourceBefore, sourceAfter;
+  std::vector<std::uint8_t> masksBefore, masksAfter;
+  ASSERT_TRUE(mesh.BuildConforming(before, sourceBefore, nullptr, &masksBefore));
+  mesh.SplitRed(40);
+  mesh.Close();
+  ASSERT_TRUE(mesh.BuildConforming(after, sourceAfter, nullptr, &masksAfter));
+  ASSERT_EQ(masksAfter.size(), mesh.Reds().size());
+  EXPECT_EQ(masksAfter[40], cbc3d::RedGreenMesh::NotLeaf);
+  auto tetsOf = [](std::int64_t red, const std::vector<cbc3d::Tet>& tets, const std::vector<std::int64_t>& source) {
+    std::vector<cbc3d::Tet> of;
+    for (std::size_t t = 0; t < tets.size(); ++t)
+      if (source[t] == red)
+        of.push_back(tets[t]);
+    return of;
+  };
+  int same = 0, changed = 0;
+  for (std::size_t red = 0; red < masksBefore.size(); ++red)
+  {
+    if (masksAfter[red] == cbc3d::RedGreenMesh::NotLeaf)
+      continue;
+    const auto now = tetsOf(std::int64_t(red), after, sourceAfter);
+    EXPECT_EQ(now.size(), cbc3d::GreenClosure(masksAfter[red])->size()) << "red " << red;
+    if (masksAfter[red] == masksBefore[red])
+    {
+      EXPECT_EQ(now, tetsOf(std::int64_t(red), before, sourceBefore)) << "red " << red;
+      ++same;
+    }
+    else
+    {
+      EXPECT_NE(masksAfter[red], 0) << "red " << red; // it has split edges now
+      ++changed;
+    }
+  }
+  EXPECT_GT(same, 0);
+  EXPECT_GT(changed, 0); // the split's neighbours took green closures
+}
