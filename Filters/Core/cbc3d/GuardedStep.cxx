@@ -3,6 +3,8 @@
 #include "cbc3d/Parallel.h"
 #include "cbc3d/TetGeometry.h"
 
+#include <cmath>
+
 namespace cbc3d
 {
 std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
@@ -10,6 +12,7 @@ std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::
 {
   const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
   std::vector<char> bad(count, 0);
+  const double largestCosine = std::cos(minimumRadians); // DihedralAnglesWithin's test, its cosine once
 #pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
   for (std::int64_t t = 0; t < count; ++t)
   {
@@ -23,7 +26,7 @@ std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::
       bad[t] = 1;
       continue;
     }
-    bad[t] = !DihedralAnglesWithin(x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]], minimumRadians);
+    bad[t] = !(LargestDihedralCosine(x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]) <= largestCosine);
   }
   std::vector<std::int64_t> result;
   for (std::int64_t t = 0; t < count; ++t)
