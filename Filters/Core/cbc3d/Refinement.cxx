@@ -236,14 +236,19 @@ std::map<std::int32_t, TissueFidelity> MeasureFidelity(const LabelImage& image,
 #pragma omp parallel for schedule(dynamic, 64) num_threads(ThreadCount(threads))
   for (std::int64_t r = 0; r < runCount; ++r)
   {
+    // One voxel in a tet of its label is enough: a component found already is not looked at.
     const std::int32_t component = components.Runs[r].Component;
-    for (std::int64_t v = components.Runs[r].First; v <= components.Runs[r].Last; ++v)
+    char found;
+#pragma omp atomic read
+    found = componentInMesh[component];
+    for (std::int64_t v = components.Runs[r].First; !found && v <= components.Runs[r].Last; ++v)
     {
       const std::int32_t owner = mesh.OwnerOf(v);
       if (owner >= 0 && mesh.Labels[owner] == components.Label[component])
       {
 #pragma omp atomic write
         componentInMesh[component] = 1;
+        found = 1;
       }
     }
   }
