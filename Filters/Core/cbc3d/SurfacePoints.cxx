@@ -3,6 +3,8 @@
 #include "cbc3d/MeshFaces.h"
 #include "cbc3d/Parallel.h"
 
+#include <algorithm>
+
 namespace cbc3d
 {
 std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(const TetMesh& mesh)
@@ -52,6 +54,22 @@ std::map<std::int32_t, std::vector<PointId>> TissueSurfaceVertices(
   return result;
 }
 
+namespace
+{
+// Marks the voxels a..b of row (j, k) that do not hold `label` (marks[0] is voxel a), run by run.
+void MarkOtherLabels(const LabelImage& image, int j, int k, int a, int b, std::int32_t label, std::vector<char>& marks)
+{
+  int x = a;
+  image.ForEachRun(j, k, a, b, [&](std::int32_t other, int length) {
+    if (other != label)
+    {
+      std::fill(marks.begin() + (x - a), marks.begin() + (x - a + length), 1);
+    }
+    x += length;
+  });
+}
+} // namespace
+
 TissueVoxels TissueBoundaryVoxels(const LabelImage& image, int numberOfThreads)
 {
   const auto& d = image.Dimensions;
@@ -59,32 +77,45 @@ TissueVoxels TissueBoundaryVoxels(const LabelImage& image, int numberOfThreads)
   const std::array<int, 3> first = image.StoredLower, last = image.StoredUpper();
   // One list of (label, voxel) per slice, merged in slice order for a thread-independent result.
   std::vector<std::vector<std::pair<std::int32_t, std::int64_t>>> perSlice(d[2]);
-  const std::array<std::int64_t, 3> stride = image.VoxelStrides();
-  const std::int32_t* labels = image.Labels.data();
-#pragma omp parallel for schedule(dynamic, 1) num_threads(ThreadCount(numberOfThreads))
-  for (int k = first[2]; k <= last[2]; ++k)
+#pragma omp parallel num_threads(ThreadCount(numberOfThreads))
   {
-    auto& found = perSlice[k];
-    for (int j = first[1]; j <= last[1]; ++j)
+    std::vector<char> marks;
+#pragma omp for schedule(dynamic, 1)
+    for (int k = first[2]; k <= last[2]; ++k)
     {
-      // Indices, not pointers, into the rows around: those beyond the stored box are only
-      // read for tissue voxels, which are never at its edge unless at the image's border.
-      const std::int64_t row = image.VoxelIndex(first[0], j, k) - first[0];
-      const bool borderRow = j == 0 || k == 0 || j == d[1] - 1 || k == d[2] - 1;
-      for (int i = first[0]; i <= last[0]; ++i)
+      auto& found = perSlice[k];
+      for (int j = first[1]; j <= last[1]; ++j)
       {
-        const std::int64_t v = row + i;
-        const std::int32_t label = labels[v];
-        if (!image.IsTissue(label))
-        {
-          continue;
-        }
-        if (borderRow || i == 0 || i == d[0] - 1 || labels[v - 1] != label || labels[v + 1] != label ||
-          labels[v - stride[1]] != label || labels[v + stride[1]] != label ||
-          labels[v - stride[2]] != label || labels[v + stride[2]] != label)
-        {
-          found.emplace_back(label, v);
-        }
+        // Run by run: the ends of a tissue run differ from their neighbours along x (or lie on
+        // the image's border), and the rows around are read run by run too. Those rows are
+        // stored for a tissue run unless it lies on the image's border, where all its voxels are
+        // boundary voxels.
+        const std::int64_t row = image.VoxelIndex(first[0], j, k) - first[0];
+        const bool borderRow = j == 0 || k == 0 || j == d[1] - 1 || k == d[2] - 1;
+        int a = first[0];
+        image.ForEachRun(j, k, first[0], last[0], [&](std::int32_t label, int length) {
+          const int b = a + length - 1;
+          if (image.IsTissue(label))
+          {
+            marks.assign(static_cast<std::size_t>(length), borderRow ? 1 : 0);
+            marks.front() = marks.back() = 1;
+            if (!borderRow)
+            {
+              MarkOtherLabels(image, j - 1, k, a, b, label, marks);
+              MarkOtherLabels(image, j + 1, k, a, b, label, marks);
+              MarkOtherLabels(image, j, k - 1, a, b, label, marks);
+              MarkOtherLabels(image, j, k + 1, a, b, label, marks);
+            }
+            for (int i = a; i <= b; ++i)
+            {
+              if (marks[i - a])
+              {
+                found.emplace_back(label, row + i);
+              }
+            }
+          }
+          a = b + 1;
+        });
       }
     }
   }

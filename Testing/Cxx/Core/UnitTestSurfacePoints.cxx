@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <random>
+
 #include "TestImages.h"
 
 TEST(SurfacePoints, BoundaryVoxelsOfABlockAreAllButItsCore)
@@ -66,4 +69,62 @@ TEST(SurfaceDistance, SummaryOfKnownDistances)
   std::vector<double> only = { 4, 1, 3, 2, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20 };
   std::vector<double> same = only;
   EXPECT_DOUBLE_EQ(cbc3d::SummarizeSurfaceDistances(only, same).Percentile95, 19.0);
+}
+
+TEST(SurfacePoints, BoundaryVoxelsRunByRunAreThoseOfAVoxelByVoxelScan)
+{
+  // Random blobs of three tissues and two background labels, in a stored box that is the whole
+  // image or leaves a margin of background on some sides, with and without the index of runs:
+  // a tissue voxel is a boundary voxel where a 6-neighbour holds another label or the image
+  // ends there.
+  std::mt19937 random(5);
+  for (int trial = 0; trial < 30; ++trial)
+  {
+    cbc3d::LabelImage image;
+    image.Dimensions = { 21, 17, 15 };
+    const bool margin = trial % 2 == 1;
+    image.StoredLower = margin ? std::array<int, 3>{ 0, 2, 1 } : std::array<int, 3>{ 0, 0, 0 };
+    image.StoredSize = margin ? std::array<int, 3>{ 19, 15, 14 } : image.Dimensions;
+    image.BackgroundLabels = { 0, 9 };
+    const auto& s = image.StoredSize;
+    image.Labels.resize(std::size_t(s[0]) * s[1] * s[2]);
+    const int change = 2 + trial % 4;
+    for (std::size_t v = 0; v < image.Labels.size(); ++v)
+    {
+      const std::int32_t fresh = std::array<std::int32_t, 5>{ 0, 9, 1, 2, 3 }[random() % 5];
+      const bool keep = v % s[0] != 0 && int(random() % change) != 0;
+      image.Labels[v] = keep ? image.Labels[v - 1] : (v >= std::size_t(s[0]) * s[1] && random() % 2 ? image.Labels[v - s[0] * s[1]] : fresh);
+    }
+    if (margin) // background around the tissue wherever the box stops short of the image's end
+      for (int k = 0; k < s[2]; ++k)
+        for (int j = 0; j < s[1]; ++j)
+          for (int i = 0; i < s[0]; ++i)
+          {
+            const int x = i + image.StoredLower[0], y = j + image.StoredLower[1], z = k + image.StoredLower[2];
+            if ((i == s[0] - 1 && x < image.Dimensions[0] - 1) || (j == 0 && y > 0) || (j == s[1] - 1 && y < image.Dimensions[1] - 1) ||
+              (k == 0 && z > 0) || (k == s[2] - 1 && z < image.Dimensions[2] - 1))
+              image.Labels[image.VoxelIndex(x, y, z)] = 0;
+          }
+    cbc3d::TissueVoxels expected;
+    const auto& d = image.Dimensions;
+    for (int z = 0; z < d[2]; ++z)
+      for (int y = 0; y < d[1]; ++y)
+        for (int x = 0; x < d[0]; ++x)
+        {
+          const std::int32_t label = image.LabelOf(x, y, z);
+          if (!image.IsTissue(label))
+            continue;
+          bool boundary = x == 0 || y == 0 || z == 0 || x == d[0] - 1 || y == d[1] - 1 || z == d[2] - 1;
+          const int steps[6][3] = { { -1, 0, 0 }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 }, { 0, 0, 1 } };
+          for (const auto& step : steps)
+            boundary = boundary || image.LabelOf(x + step[0], y + step[1], z + step[2]) != label;
+          if (boundary)
+            expected[label].push_back(image.VoxelIndex(x, y, z));
+        }
+    cbc3d::LabelImage indexed = image;
+    cbc3d::IndexLabelRuns(indexed, 2);
+    for (const cbc3d::LabelImage* which : { &image, &indexed })
+      for (const int threads : { 1, 3 })
+        ASSERT_EQ(cbc3d::TissueBoundaryVoxels(*which, threads), expected) << "trial " << trial;
+  }
 }
