@@ -55,8 +55,9 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell)
 
 namespace
 {
-// floor(t) clamped to [lowest, highest], 0 for NaN: std::floor is a library call on the
-// baseline x86-64 instruction set, and this runs for every query and point.
+// floor(t) clamped to [lowest, highest], 0 for NaN, from one truncation: this runs for every
+// query and point, and std::floor (a library call, or a long inline sequence without SSE4.1)
+// followed by a clamp in doubles cost 2% of the brain's instructions more.
 std::int64_t ClampedFloor(double t, std::int64_t lowest, std::int64_t highest)
 {
   if (!(t > double(lowest)))
