@@ -291,25 +291,32 @@ std::map<std::int64_t, std::int32_t> PinComponents(const LabelImage& image,
   const std::size_t count = components.Label.size();
   std::vector<std::vector<std::int32_t>> fewHolders(count);
   std::map<std::int32_t, std::map<std::int32_t, std::int64_t>> missing; // component -> tet -> voxels
-  components.ForEachVoxel([&](std::int64_t v, std::int32_t component) {
-    const std::int32_t owner = mesh.OwnerOf(v);
-    if (owner < 0 || IsSmall(components, component, minimumVoxels))
+  for (const TissueComponents::Run& run : components.Runs)
+  {
+    const std::int32_t component = run.Component;
+    auto& holders = fewHolders[component];
+    if (IsSmall(components, component, minimumVoxels) || (componentInMesh[component] && holders.size() > FewTets))
     {
-      return;
+      continue; // nothing this run holds can change the outcome
     }
-    if (!componentInMesh[component])
+    for (std::int64_t v = run.First; v <= run.Last; ++v)
     {
-      ++missing[component][owner];
-    }
-    else if (mesh.Labels[owner] == components.Label[component])
-    {
-      auto& holders = fewHolders[component];
-      if (holders.size() <= FewTets && std::find(holders.begin(), holders.end(), owner) == holders.end())
+      const std::int32_t owner = mesh.OwnerOf(v);
+      if (owner < 0)
+      {
+        continue;
+      }
+      if (!componentInMesh[component])
+      {
+        ++missing[component][owner];
+      }
+      else if (mesh.Labels[owner] == components.Label[component] && holders.size() <= FewTets &&
+        std::find(holders.begin(), holders.end(), owner) == holders.end())
       {
         holders.push_back(owner);
       }
     }
-  });
+  }
   std::map<std::int64_t, std::int32_t> pinned;
   for (std::size_t component = 0; component < count; ++component)
   {
@@ -389,13 +396,22 @@ std::vector<char> MarkForFidelity(const LabelImage& image, const TissueComponent
       }
     }
   }
-  components.ForEachVoxel([&](std::int64_t v, std::int32_t component) {
-    if (!componentInMesh[component] &&
-      !IsSmall(components, component, params.MinimumComponentVoxels) && mesh.OwnerOf(v) >= 0)
+  // The tets holding a component that is missing from the mesh (rare: most runs are skipped).
+  for (const TissueComponents::Run& run : components.Runs)
+  {
+    if (componentInMesh[run.Component] || IsSmall(components, run.Component, params.MinimumComponentVoxels))
     {
-      marked[mesh.Source[mesh.OwnerOf(v)]] = 1;
+      continue;
     }
-  });
+    for (std::int64_t v = run.First; v <= run.Last; ++v)
+    {
+      const std::int32_t owner = mesh.OwnerOf(v);
+      if (owner >= 0)
+      {
+        marked[mesh.Source[owner]] = 1;
+      }
+    }
+  }
   return marked;
 }
 
