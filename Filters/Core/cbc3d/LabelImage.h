@@ -122,8 +122,9 @@ struct LabelImage
   }
   Eigen::Vector3d WorldToIndex(const Eigen::Vector3d& world) const;
 
-  /// Calls visit(label, voxels) for each run of one label among the stored voxels first..last
-  /// (x, inclusive, within the stored box) of stored row (j, k): maximal runs, in order.
+  /// Calls visit(label, voxels, x) for each run of one label among the stored voxels
+  /// first..last (x, inclusive, within the stored box) of stored row (j, k): maximal runs, in
+  /// order; x is the run's first voxel.
   template <typename Visit>
   void ForEachRun(int j, int k, int first, int last, Visit&& visit) const
   {
@@ -136,7 +137,7 @@ struct LabelImage
         int end = start + 1;
         while (end <= to && row[end] == row[start])
           ++end;
-        visit(row[start], end - start);
+        visit(row[start], end - start, start + this->StoredLower[0]);
         start = end;
       }
       return;
@@ -150,7 +151,7 @@ struct LabelImage
     for (int start = from; start <= to; ++run)
     {
       const int next = starts + run + 1 < end ? std::min(starts[run + 1], to + 1) : to + 1;
-      visit(this->RunLabel[run], next - start);
+      visit(this->RunLabel[run], next - start, start + this->StoredLower[0]);
       start = next;
     }
   }

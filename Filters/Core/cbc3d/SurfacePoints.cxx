@@ -59,13 +59,11 @@ namespace
 // Marks the voxels a..b of row (j, k) that do not hold `label` (marks[0] is voxel a), run by run.
 void MarkOtherLabels(const LabelImage& image, int j, int k, int a, int b, std::int32_t label, std::vector<char>& marks)
 {
-  int x = a;
-  image.ForEachRun(j, k, a, b, [&](std::int32_t other, int length) {
+  image.ForEachRun(j, k, a, b, [&](std::int32_t other, int length, int x) {
     if (other != label)
     {
       std::fill(marks.begin() + (x - a), marks.begin() + (x - a + length), 1);
     }
-    x += length;
   });
 }
 } // namespace
@@ -92,8 +90,7 @@ TissueVoxels TissueBoundaryVoxels(const LabelImage& image, int numberOfThreads)
         // boundary voxels.
         const std::int64_t row = image.VoxelIndex(first[0], j, k) - first[0];
         const bool borderRow = j == 0 || k == 0 || j == d[1] - 1 || k == d[2] - 1;
-        int a = first[0];
-        image.ForEachRun(j, k, first[0], last[0], [&](std::int32_t label, int length) {
+        image.ForEachRun(j, k, first[0], last[0], [&](std::int32_t label, int length, int a) {
           const int b = a + length - 1;
           if (image.IsTissue(label))
           {
@@ -114,7 +111,6 @@ TissueVoxels TissueBoundaryVoxels(const LabelImage& image, int numberOfThreads)
               }
             }
           }
-          a = b + 1;
         });
       }
     }

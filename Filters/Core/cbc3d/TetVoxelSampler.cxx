@@ -190,7 +190,7 @@ std::int64_t AddVoxelRun(const LabelImage& image, int j, int k, int first, int l
   LabelCounts& counts, std::int32_t owner, std::int32_t* voxelOwner)
 {
   image.ForEachRun(j, k, first, last,
-    [&](std::int32_t label, int voxels) { counts.Add(label, VoxelWeight * voxels); });
+    [&](std::int32_t label, int voxels, int) { counts.Add(label, VoxelWeight * voxels); });
   if (voxelOwner)
   {
     const std::int64_t start = image.VoxelIndex(first, j, k);

@@ -109,11 +109,9 @@ BoxRuns CollectTissueRuns(const LabelImage& image, const std::array<int, 3>& low
   for (int k = lower[2]; k <= upper[2]; ++k)
     for (int j = lower[1]; j <= upper[1]; ++j)
     {
-      int x = lower[0];
-      image.ForEachRun(j, k, lower[0], upper[0], [&](std::int32_t label, int voxels) {
+      image.ForEachRun(j, k, lower[0], upper[0], [&](std::int32_t label, int voxels, int x) {
         if (image.IsTissue(label))
           box.Runs.push_back({ x, x + voxels - 1, label });
-        x += voxels;
       });
       box.RowFirst.push_back(static_cast<std::int64_t>(box.Runs.size()));
     }

@@ -135,7 +135,8 @@ TEST(LabelImage, RunsOfARowAreTheSameFromTheIndexOfRuns)
     {
       std::vector<std::int32_t> expanded;
       std::int32_t previous = -1;
-      which->ForEachRun(j, k, first, last, [&](std::int32_t label, int voxels) {
+      which->ForEachRun(j, k, first, last, [&](std::int32_t label, int voxels, int x) {
+        EXPECT_EQ(x, first + int(expanded.size())); // where the run starts
         EXPECT_GT(voxels, 0);
         EXPECT_NE(label, previous);
         previous = label;
