@@ -44,7 +44,7 @@ struct LabelledMesh
   // The tet owning each voxel centre, as an owner id (-1: none), and the tet of each id. Ids
   // outlive passes: a tet that a pass leaves as it was keeps its id and its voxels' entries,
   // so only the voxels of new tets are written again.
-  std::vector<std::int32_t> VoxelOwner;
+  VoxelOwners VoxelOwner;
   std::vector<std::int32_t> OwnerTet;
   std::int32_t OwnerOf(std::int64_t voxel) const
   {
@@ -109,7 +109,7 @@ bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threa
   const std::int64_t ids = static_cast<std::int64_t>(mesh.OwnerTet.size());
   if (mesh.VoxelOwner.size() != image.Labels.size() || ids + count > std::numeric_limits<std::int32_t>::max())
   {
-    mesh.VoxelOwner.assign(image.Labels.size(), -1); // the first pass, or ids running out
+    AssignInParallel(mesh.VoxelOwner, image.Labels.size(), -1, threads); // the first pass, or ids running out
     mesh.OwnerTet.clear();
     mesh.LeafMask.clear();
   }

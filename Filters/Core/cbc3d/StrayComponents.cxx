@@ -42,7 +42,7 @@ std::vector<char> EmbeddedPieces(DisjointSets& pieces, const std::vector<std::ar
 
 // Marks the piece holding most voxels of each image region (ties: the smaller root); a speck's
 // piece only where it is embedded.
-std::vector<char> KeptPieces(DisjointSets& pieces, const std::vector<std::int32_t>& voxelOwner,
+std::vector<char> KeptPieces(DisjointSets& pieces, const VoxelOwners& voxelOwner,
   const ImageRegions& regions, const std::vector<std::int32_t>& classes, const std::vector<char>& embedded)
 {
   const std::int64_t outside = static_cast<std::int64_t>(classes.size());
@@ -79,7 +79,7 @@ std::vector<char> KeptPieces(DisjointSets& pieces, const std::vector<std::int32_
 
 std::int64_t RemoveStrayComponents(const std::vector<Tet>& tets,
   const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
-  const ClassVotes& votes, const std::vector<std::int32_t>& voxelOwner, const ImageRegions& regions,
+  const ClassVotes& votes, const VoxelOwners& voxelOwner, const ImageRegions& regions,
   std::vector<std::int32_t>& classes, std::vector<std::int64_t>& changed)
 {
   DisjointSets pieces = FindPieces(tets, across, background, classes);

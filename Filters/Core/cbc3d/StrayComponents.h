@@ -2,6 +2,7 @@
 #define cbc3d_StrayComponents_h
 
 #include "cbc3d/ManifoldRepair.h"
+#include "cbc3d/TetVoxelSampler.h"
 #include "cbc3d/TissueComponents.h"
 
 #include <cstdint>
@@ -34,7 +35,7 @@ struct ImageRegions
 /// the tets relabelled to `changed`; returns how many pieces went.
 std::int64_t RemoveStrayComponents(const std::vector<Tet>& tets,
   const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
-  const ClassVotes& votes, const std::vector<std::int32_t>& voxelOwner, const ImageRegions& regions,
+  const ClassVotes& votes, const VoxelOwners& voxelOwner, const ImageRegions& regions,
   std::vector<std::int32_t>& classes, std::vector<std::int64_t>& changed);
 /// Whether some face-connected piece of the background does not reach the mesh boundary (a
 /// cavity, which only a cavity of the image may justify).

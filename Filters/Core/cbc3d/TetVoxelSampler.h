@@ -2,6 +2,7 @@
 #define cbc3d_TetVoxelSampler_h
 
 #include "cbc3d/LabelImage.h"
+#include "cbc3d/UninitializedVector.h"
 
 #include <Eigen/Core>
 
@@ -15,6 +16,10 @@ namespace cbc3d
 /// Sample weights: a whole voxel weighs VoxelWeight; a sample of a sub-grid with s samples per
 /// voxel along each axis weighs VoxelWeight / s^3 (s up to 16).
 constexpr std::int64_t VoxelWeight = 16 * 16 * 16;
+
+/// The tet owning each stored voxel's centre (indexed like LabelImage::Labels; -1 for none):
+/// as large as the image's stored box, so it is filled in parallel (AssignInParallel).
+using VoxelOwners = UninitializedVector<std::int32_t>;
 
 /// How much of each label a tet holds, in sample weights.
 struct LabelCounts
