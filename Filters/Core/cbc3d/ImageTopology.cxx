@@ -176,7 +176,7 @@ ImageTopology Measure(const LabelImage& image, bool withWhole, int numberOfThrea
     }
   }
   // One tissue after another, each in parallel; the whole body is the tissue where there is one.
-  const std::vector<std::int32_t>& labels = image.Labels;
+  const auto& labels = image.Labels;
   std::vector<std::int64_t> euler;
   for (const LabelBox& box : boxes)
   {

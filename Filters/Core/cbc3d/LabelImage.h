@@ -3,6 +3,7 @@
 
 #include "cbc3d/LabelCodes.h"
 #include "cbc3d/Status.h"
+#include "cbc3d/UninitializedVector.h"
 
 #include <Eigen/Core>
 
@@ -29,7 +30,7 @@ struct LabelImage
   Eigen::Vector3d Origin = Eigen::Vector3d::Zero();
   Eigen::Vector3d Spacing = Eigen::Vector3d::Ones();
   Eigen::Matrix3d Direction = Eigen::Matrix3d::Identity();
-  std::vector<std::int32_t> Labels;
+  UninitializedVector<std::int32_t> Labels; // resize leaves new labels unset: fill them
   std::vector<std::int32_t> BackgroundLabels = { 0 };
   LabelCodes Codes; // the values the labels stand for (the labels themselves unless larger)
   std::array<int, 3> StoredLower = { 0, 0, 0 };
