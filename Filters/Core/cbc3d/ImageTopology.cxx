@@ -17,40 +17,51 @@ struct LabelBox
   std::array<int, 3> Lower, Upper;
 };
 
-// Every tissue's box in one pass; a label is looked up only where it differs from the last.
-std::vector<LabelBox> TissueBoxes(const LabelImage& image)
+// Widens the box of `label` in `boxes` (added when new) to hold the voxels x0..x1 of row (j, k).
+void Widen(std::vector<LabelBox>& boxes, std::int32_t label, int x0, int x1, int j, int k)
 {
-  std::vector<LabelBox> boxes;
-  // The stored box holds every tissue voxel, in the image's order.
+  auto box = std::find_if(boxes.begin(), boxes.end(), [label](const LabelBox& b) { return b.Label == label; });
+  if (box == boxes.end())
+  {
+    boxes.push_back(LabelBox{ label, { x0, j, k }, { x1, j, k } });
+    return;
+  }
+  const std::array<int, 3> lower = { x0, j, k }, upper = { x1, j, k };
+  for (int a = 0; a < 3; ++a)
+  {
+    box->Lower[a] = std::min(box->Lower[a], lower[a]);
+    box->Upper[a] = std::max(box->Upper[a], upper[a]);
+  }
+}
+
+// Every tissue's box, run by run (LabelImage::ForEachRun: with the run index, a uniform stretch
+// costs one step), slices on the threads; the threads' boxes are merged in thread order. Boxes
+// are minima and maxima, so the same for any thread count; their order does not matter.
+std::vector<LabelBox> TissueBoxes(const LabelImage& image, int threads)
+{
+  // The stored box holds every tissue voxel.
   const std::array<int, 3> first = image.StoredLower, upper = image.StoredUpper();
-  std::size_t last = 0;
-  std::int64_t voxel = 0;
+  const int count = ThreadCount(threads);
+  std::vector<std::vector<LabelBox>> perThread(count);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(count)
   for (int k = first[2]; k <= upper[2]; ++k)
+  {
+    std::vector<LabelBox>& boxes = perThread[ThreadId()];
     for (int j = first[1]; j <= upper[1]; ++j)
-      for (int i = first[0]; i <= upper[0]; ++i, ++voxel)
-      {
-        const std::int32_t label = image.Labels[voxel];
-        if (last >= boxes.size() || boxes[last].Label != label)
-        {
-          if (image.IsBackground(label))
-          {
-            continue;
-          }
-          last = std::find_if(boxes.begin(), boxes.end(), [label](const LabelBox& b) { return b.Label == label; }) -
-            boxes.begin();
-          if (last == boxes.size())
-          {
-            boxes.push_back(LabelBox{ label, { i, j, k }, { i, j, k } });
-          }
-        }
-        LabelBox& box = boxes[last];
-        const std::array<int, 3> at = { i, j, k };
-        for (int a = 0; a < 3; ++a)
-        {
-          box.Lower[a] = std::min(box.Lower[a], at[a]);
-          box.Upper[a] = std::max(box.Upper[a], at[a]);
-        }
-      }
+    {
+      image.ForEachRun(j, k, first[0], upper[0], [&](std::int32_t label, int voxels, int x) {
+        if (!image.IsBackground(label))
+          Widen(boxes, label, x, x + voxels - 1, j, k);
+      });
+    }
+  }
+  std::vector<LabelBox> boxes;
+  for (const std::vector<LabelBox>& some : perThread)
+    for (const LabelBox& box : some)
+    {
+      Widen(boxes, box.Label, box.Lower[0], box.Upper[0], box.Lower[1], box.Lower[2]);
+      Widen(boxes, box.Label, box.Upper[0], box.Upper[0], box.Upper[1], box.Upper[2]);
+    }
   return boxes;
 }
 
@@ -161,7 +172,7 @@ std::int64_t VoxelSurfaceEuler(const LabelImage& image, const std::array<int, 3>
 ImageTopology Measure(const LabelImage& image, bool withWhole, int numberOfThreads)
 {
   ImageTopology topology;
-  const std::vector<LabelBox> boxes = TissueBoxes(image);
+  const std::vector<LabelBox> boxes = TissueBoxes(image, numberOfThreads);
   if (boxes.empty())
   {
     return topology;

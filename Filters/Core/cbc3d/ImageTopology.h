@@ -20,7 +20,7 @@ struct ImageTopology
 };
 
 /// Every tissue's and the whole body's surface Euler characteristic. Each set is scanned over
-/// its bounding box only, with flag arrays for the corners and edges, one set per thread
+/// its bounding box only, a slab of slices per thread with two slices of corner codes each
 /// (0 threads: the OpenMP default). The same result for any thread count.
 ImageTopology MeasureImageTopology(const LabelImage& image, int numberOfThreads = 0);
 
