@@ -804,7 +804,7 @@ def main():
         print_scaling(figures["scaling"])
     if not options.scaling_only and not options.no_targets:
         figures["targets"] = speed_targets.measure(cli, SHARED, PAPER_SETTINGS, figures["images"],
-                                                   figures.get("scaling"), read_nifti_header, open_nifti, progress)
+                                                   read_nifti_header, open_nifti, upsample_nifti, progress)
         speed_targets.print_targets(figures["targets"], print_table)
     with open(options.json, "w") as out:
         json.dump(figures, out, indent=2)
