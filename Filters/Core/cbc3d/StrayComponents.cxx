@@ -47,9 +47,24 @@ std::vector<char> KeptPieces(DisjointSets& pieces, const VoxelOwners& voxelOwner
 {
   const std::int64_t outside = static_cast<std::int64_t>(classes.size());
   std::vector<std::unordered_map<std::int64_t, std::int64_t>> held(regions.ClassOfRegion.size());
+  // Consecutive voxels of one region and one owner are counted together: a tet spans many
+  // voxels of a row, so the map is looked up per stretch, not per voxel (every tissue voxel is
+  // visited, in every cleanup round).
+  std::int32_t lastRegion = -1, lastOwner = -1;
+  std::int64_t stretch = 0;
+  auto flush = [&]() {
+    if (stretch > 0 && lastRegion >= 0 && lastOwner >= 0 && classes[lastOwner] == regions.ClassOfRegion[lastRegion])
+      held[lastRegion][pieces.Find(lastOwner)] += stretch;
+    stretch = 0;
+  };
   auto hold = [&](std::int32_t region, std::int32_t owner) {
-    if (region >= 0 && owner >= 0 && classes[owner] == regions.ClassOfRegion[region])
-      ++held[region][pieces.Find(owner)];
+    if (region != lastRegion || owner != lastOwner)
+    {
+      flush();
+      lastRegion = region;
+      lastOwner = owner;
+    }
+    ++stretch;
   };
   // Counts are whole numbers, and the choice below does not depend on the order of the pieces.
   regions.Tissues->ForEachVoxel([&](std::int64_t v, std::int32_t component) { hold(component, voxelOwner[v]); });
@@ -59,6 +74,7 @@ std::vector<char> KeptPieces(DisjointSets& pieces, const VoxelOwners& voxelOwner
     if (gap >= 0)
       hold(regions.RegionOfGap[gap], voxelOwner[v]);
   }
+  flush();
   std::vector<char> kept(classes.size() + 1, 0);
   kept[pieces.Find(outside)] = 1;
   for (std::size_t region = 0; region < held.size(); ++region)
