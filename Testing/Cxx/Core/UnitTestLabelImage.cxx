@@ -148,3 +148,21 @@ TEST(LabelImage, RunsOfARowAreTheSameFromTheIndexOfRuns)
     }
   }
 }
+
+// The stored labels and the voxel owners are UninitializedVectors: AssignInParallel must write
+// every element, whatever the size and the thread count, over whatever was there.
+TEST(LabelImage, AssignInParallelWritesEveryElement)
+{
+  for (const std::size_t size : { std::size_t(0), std::size_t(1), std::size_t(65537), std::size_t(1) << 20 })
+  {
+    for (const int threads : { 1, 2, 3 })
+    {
+      cbc3d::UninitializedVector<std::int32_t> values(size / 2 + 3);
+      std::fill(values.begin(), values.end(), 7);
+      cbc3d::AssignInParallel(values, size, std::int32_t(-1), threads);
+      ASSERT_EQ(values.size(), size);
+      EXPECT_EQ(std::count(values.begin(), values.end(), -1), static_cast<std::ptrdiff_t>(size))
+        << "size " << size << ", " << threads << " threads";
+    }
+  }
+}

@@ -1,5 +1,6 @@
 #include "cbc3d/BCCLattice.h"
 #include "cbc3d/Refinement.h"
+#include "cbc3d/StrayComponents.h"
 #include "cbc3d/TetGeometry.h"
 #include "cbc3d/TetTopology.h"
 #include "cbc3d/TissueComponents.h"
@@ -302,5 +303,41 @@ TEST(TissueComponents, RunsJoinAsAFloodFillOverVoxels)
       for (std::int64_t v = 0; v < std::int64_t(image.Labels.size()); v += 5)
         ASSERT_EQ(components.ComponentOf(v), expected[v]);
     }
+  }
+}
+
+// Two pieces of tissue 1 (tets 0 and 2, with background tet 1 between them) share one image
+// component of 11 voxels: the piece that owns more of its voxels stands for it, the other goes
+// to the background. The voxels' order puts the deciding ones last, or interleaves the owners,
+// so that counting stretches of one owner instead of voxels, or losing the last stretch, shows.
+TEST(StrayComponents, ThePieceOwningMostOfAComponentsVoxelsStays)
+{
+  const std::vector<cbc3d::Tet> tets(3, cbc3d::Tet{ 0, 1, 2, 3 }); // geometry is not read
+  const std::vector<std::array<std::int64_t, 4>> across = { { 1, -1, -1, -1 }, { 0, 2, -1, -1 }, { 1, -1, -1, -1 } };
+  cbc3d::TissueComponents components;
+  components.Label = { 1 };
+  components.Size = { 11 };
+  components.Runs = { { 0, 10, 0 } };
+  cbc3d::ImageRegions regions;
+  regions.Tissues = &components;
+  regions.ClassOfRegion = { 1 };
+  regions.Speck = { 0 };
+  const cbc3d::ClassVotes votes = [](std::int64_t, std::int32_t) { return std::int64_t(0); };
+  struct Case
+  {
+    std::vector<std::int32_t> Owners;
+    std::int64_t Stray; // the tet given away
+  };
+  const std::vector<Case> cases = { { { 0, 0, 0, 0, 0, 2, 2, 2, 2, 2, 2 }, 0 },
+    { { 2, 2, 2, 2, 2, 0, 0, 0, 0, 0, 0 }, 2 }, { { 0, 2, 0, 2, 0, 2, 0, 2, 2, 2, 0 }, 0 } };
+  for (const Case& c : cases)
+  {
+    cbc3d::VoxelOwners owners(c.Owners.begin(), c.Owners.end());
+    std::vector<std::int32_t> classes = { 1, 0, 1 };
+    std::vector<std::int64_t> changed;
+    EXPECT_EQ(cbc3d::RemoveStrayComponents(tets, across, 0, votes, owners, regions, classes, changed), 1);
+    EXPECT_EQ(changed, std::vector<std::int64_t>{ c.Stray });
+    EXPECT_EQ(classes[c.Stray], 0);
+    EXPECT_EQ(classes[2 - c.Stray], 1);
   }
 }
