@@ -53,8 +53,9 @@ namespace
 // Stores the codes of the box of the voxels that do not hold the first background label
 // (`lower` to `upper`; none: upper[0] < 0), and one voxel around it (the stages read one voxel
 // beyond a tissue voxel), clamped to the image: the rest of the image is that background, so a
-// padded image costs what its box does.
-void StoreLabels(vtkDataArray* labels, std::array<int, 3> lower, std::array<int, 3> upper, cbc3d::LabelImage& out,
+// padded image costs what its box does. False if a value has no code (the survey that made the
+// codes saw every value, so never): the labels are then not all written (they are not zeroed first).
+bool StoreLabels(vtkDataArray* labels, std::array<int, 3> lower, std::array<int, 3> upper, cbc3d::LabelImage& out,
   int threads)
 {
   const std::array<int, 3>& d = out.Dimensions;
@@ -74,8 +75,12 @@ void StoreLabels(vtkDataArray* labels, std::array<int, 3> lower, std::array<int,
   out.StoredLower = lower;
   out.StoredSize = { upper[0] - lower[0] + 1, upper[1] - lower[1] + 1, upper[2] - lower[2] + 1 };
   out.Labels.resize(std::size_t(out.StoredSize[0]) * out.StoredSize[1] * out.StoredSize[2]);
-  vtkCBC3DLabelValues::ToCodes(labels, out.Codes, d, out.StoredLower, out.StoredSize, out.Labels.data(), threads);
+  if (!vtkCBC3DLabelValues::ToCodes(labels, out.Codes, d, out.StoredLower, out.StoredSize, out.Labels.data(), threads))
+  {
+    return false;
+  }
   cbc3d::IndexLabelRuns(out, threads);
+  return true;
 }
 } // namespace
 
@@ -159,7 +164,11 @@ bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   {
     out.Codes.FindCode(backgroundLabels[b], out.BackgroundLabels[b]);
   }
-  StoreLabels(labels, lower, upper, out, threads);
+  if (!StoreLabels(labels, lower, upper, out, threads))
+  {
+    error = "internal error: an image value found no label code";
+    return false;
+  }
   const cbc3d::Status valid = cbc3d::ValidateLabelImage(out);
   if (!valid.IsOk())
   {
