@@ -147,6 +147,7 @@ private:
     const std::vector<char>& goal, std::int32_t to, std::vector<int>& path) const;
   void Relabel(Star& star, int node, std::int32_t to, std::vector<std::int64_t>& changed);
   bool JoinedNearby(const Star& star, const std::vector<int>& part, int keeper, int spare, std::int32_t cls);
+  bool GivingJoinsNearby(const Star& star, const std::vector<std::pair<int, std::int32_t>>& giveAway);
   void RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed);
   void RepairRing(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed);
   void Unify(Star& star, bool byRank, std::vector<std::int64_t>& changed);
@@ -472,6 +473,34 @@ bool Repairer::JoinedNearby(const Star& star, const std::vector<int>& part, int 
   return joined;
 }
 
+// Whether giving tets away (each node to its class in `giveAway`) would join two parts of a
+// receiving class around the vertex that the class already joins nearby: close a loop in it.
+bool Repairer::GivingJoinsNearby(const Star& star, const std::vector<std::pair<int, std::int32_t>>& giveAway)
+{
+  std::vector<std::int32_t> receivers;
+  for (const auto& entry : giveAway)
+    receivers.push_back(entry.second);
+  std::sort(receivers.begin(), receivers.end());
+  receivers.erase(std::unique(receivers.begin(), receivers.end()), receivers.end());
+  for (const std::int32_t to : receivers)
+  {
+    std::vector<int> part;
+    if (Components(star, [&](int node) { return star.Class[node] == to; }, part) < 2)
+      continue;
+    std::vector<int> touched; // the receiver's parts next to the tets it would get
+    for (const auto& [node, cls] : giveAway)
+      for (const int next : star.Links[node])
+        if (cls == to && part[next] >= 0)
+          touched.push_back(part[next]);
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (std::size_t i = 1; i < touched.size(); ++i)
+      if (this->JoinedNearby(star, part, touched[0], touched[i], to))
+        return true;
+  }
+  return false;
+}
+
 // A class in several parts around the vertex: the part it can best spare is either joined to
 // the part it values most, or given to its neighbours, whichever costs fewer votes.
 void Repairer::RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed)
@@ -521,9 +550,15 @@ void Repairer::RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_
     goal[node] = part[node] == spare;
     through[node] = part[node] < 0;
   }
-  // Parts that the class already joins elsewhere would close a loop here: a handle.
+  // Parts that the class already joins elsewhere would close a loop here: a handle. The
+  // background's loop is taken all the same where giving its part away would close one in a
+  // tissue instead: a loop of the background around a tissue that is joined elsewhere is no
+  // handle of the tissue, a second join of the tissue is (the ventricles' surface gets the
+  // image's Euler characteristic this way, -2 instead of -4).
   const std::int64_t joinCost = this->Path(star, from, through, goal, cls, path);
-  if (joinCost < giveCost && !this->JoinedNearby(star, part, keeper, spare, cls))
+  const bool closesLoop = joinCost < giveCost && this->JoinedNearby(star, part, keeper, spare, cls) &&
+    !(cls == this->Background && this->GivingJoinsNearby(star, giveAway));
+  if (joinCost < giveCost && !closesLoop)
   {
     for (const int node : path)
       this->Relabel(star, node, cls, changed);
