@@ -17,20 +17,19 @@ struct LabelBox
   std::array<int, 3> Lower, Upper;
 };
 
-// Widens the box of `label` in `boxes` (added when new) to hold the voxels x0..x1 of row (j, k).
-void Widen(std::vector<LabelBox>& boxes, std::int32_t label, int x0, int x1, int j, int k)
+// Widens the box of piece.Label in `boxes` (added when new) to hold the piece.
+void Widen(std::vector<LabelBox>& boxes, const LabelBox& piece)
 {
-  auto box = std::find_if(boxes.begin(), boxes.end(), [label](const LabelBox& b) { return b.Label == label; });
+  auto box = std::find_if(boxes.begin(), boxes.end(), [&](const LabelBox& b) { return b.Label == piece.Label; });
   if (box == boxes.end())
   {
-    boxes.push_back(LabelBox{ label, { x0, j, k }, { x1, j, k } });
+    boxes.push_back(piece);
     return;
   }
-  const std::array<int, 3> lower = { x0, j, k }, upper = { x1, j, k };
   for (int a = 0; a < 3; ++a)
   {
-    box->Lower[a] = std::min(box->Lower[a], lower[a]);
-    box->Upper[a] = std::max(box->Upper[a], upper[a]);
+    box->Lower[a] = std::min(box->Lower[a], piece.Lower[a]);
+    box->Upper[a] = std::max(box->Upper[a], piece.Upper[a]);
   }
 }
 
@@ -51,17 +50,14 @@ std::vector<LabelBox> TissueBoxes(const LabelImage& image, int threads)
     {
       image.ForEachRun(j, k, first[0], upper[0], [&](std::int32_t label, int voxels, int x) {
         if (!image.IsBackground(label))
-          Widen(boxes, label, x, x + voxels - 1, j, k);
+          Widen(boxes, LabelBox{ label, { x, j, k }, { x + voxels - 1, j, k } });
       });
     }
   }
   std::vector<LabelBox> boxes;
   for (const std::vector<LabelBox>& some : perThread)
     for (const LabelBox& box : some)
-    {
-      Widen(boxes, box.Label, box.Lower[0], box.Upper[0], box.Lower[1], box.Lower[2]);
-      Widen(boxes, box.Label, box.Upper[0], box.Upper[0], box.Upper[1], box.Upper[2]);
-    }
+      Widen(boxes, box);
   return boxes;
 }
 

@@ -147,7 +147,8 @@ private:
     const std::vector<char>& goal, std::int32_t to, std::vector<int>& path) const;
   void Relabel(Star& star, int node, std::int32_t to, std::vector<std::int64_t>& changed);
   bool JoinedNearby(const Star& star, const std::vector<int>& part, int keeper, int spare, std::int32_t cls);
-  bool GivingJoinsNearby(const Star& star, const std::vector<std::pair<int, std::int32_t>>& giveAway);
+  bool GivingJoinsNearby(const Star& star, const std::vector<std::int32_t>& receivers,
+    const std::vector<std::pair<int, std::int32_t>>& giveAway);
   void RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed);
   void RepairRing(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed);
   void Unify(Star& star, bool byRank, std::vector<std::int64_t>& changed);
@@ -473,15 +474,12 @@ bool Repairer::JoinedNearby(const Star& star, const std::vector<int>& part, int 
   return joined;
 }
 
-// Whether giving tets away (each node to its class in `giveAway`) would join two parts of a
-// receiving class around the vertex that the class already joins nearby: close a loop in it.
-bool Repairer::GivingJoinsNearby(const Star& star, const std::vector<std::pair<int, std::int32_t>>& giveAway)
+// Whether giving tets away (each node to its class in `giveAway`, one of `receivers`) would
+// join two parts of a receiving class around the vertex that the class already joins nearby:
+// close a loop in it.
+bool Repairer::GivingJoinsNearby(const Star& star, const std::vector<std::int32_t>& receivers,
+  const std::vector<std::pair<int, std::int32_t>>& giveAway)
 {
-  std::vector<std::int32_t> receivers;
-  for (const auto& entry : giveAway)
-    receivers.push_back(entry.second);
-  std::sort(receivers.begin(), receivers.end());
-  receivers.erase(std::unique(receivers.begin(), receivers.end()), receivers.end());
   for (const std::int32_t to : receivers)
   {
     std::vector<int> part;
@@ -489,9 +487,13 @@ bool Repairer::GivingJoinsNearby(const Star& star, const std::vector<std::pair<i
       continue;
     std::vector<int> touched; // the receiver's parts next to the tets it would get
     for (const auto& [node, cls] : giveAway)
+    {
+      if (cls != to)
+        continue;
       for (const int next : star.Links[node])
-        if (cls == to && part[next] >= 0)
+        if (part[next] >= 0)
           touched.push_back(part[next]);
+    }
     std::sort(touched.begin(), touched.end());
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     for (std::size_t i = 1; i < touched.size(); ++i)
@@ -557,7 +559,7 @@ void Repairer::RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_
   // image's Euler characteristic this way, -2 instead of -4).
   const std::int64_t joinCost = this->Path(star, from, through, goal, cls, path);
   const bool closesLoop = joinCost < giveCost && this->JoinedNearby(star, part, keeper, spare, cls) &&
-    !(cls == this->Background && this->GivingJoinsNearby(star, giveAway));
+    !(cls == this->Background && this->GivingJoinsNearby(star, alternatives, giveAway));
   if (joinCost < giveCost && !closesLoop)
   {
     for (const int node : path)
