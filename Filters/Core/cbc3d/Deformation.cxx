@@ -102,7 +102,12 @@ public:
     // (Measured on the brain and the k-means head: twice as fast as an incomplete-Cholesky
     // preconditioner, in less memory and to the same result; a sparse direct factorisation was
     // 20 times slower: 3-D meshes fill in badly.)
-    this->Solver.setTolerance(1e-6);
+    // A relative residual of 1e-4, not 1e-6: the step is only a proposal that the guard scales
+    // and the next iteration corrects. Measured on every shared image at both settings: the
+    // same tets, Hausdorff distances, volumes and topology, angles within 0.11 degrees of the
+    // 1e-6 meshes' (all within the bound), and less than half the iterations (brain: 15-22
+    // against 40-49 a solve).
+    this->Solver.setTolerance(1e-4);
     this->Solver.setMaxIterations(50); // per call: the solve runs in chunks so that a stop is seen soon
     // How far from the image a vertex may lie before it is steered, and how far it looks.
     for (std::size_t p = 0; p < mesh.Points.size(); ++p)
