@@ -56,13 +56,19 @@ private:
   double Reached = 0.0;
 };
 
-// The smallest margin of any dihedral angle from 0 or 180 degrees (radians).
-double SmallestAngleMargin(const TetMesh& mesh)
+// The smallest margin of any dihedral angle from 0 or 180 degrees (radians); a minimum, so
+// the same for any thread count.
+double SmallestAngleMargin(const TetMesh& mesh, int threads)
 {
+  const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
   double smallest = M_PI;
-  for (const Tet& tet : mesh.Tets)
+#pragma omp parallel for schedule(static) reduction(min : smallest) num_threads(ThreadCount(threads))
+  for (std::int64_t t = 0; t < count; ++t)
+  {
+    const Tet& tet = mesh.Tets[t];
     for (const double a : DihedralAngles(mesh.Points[tet[0]], mesh.Points[tet[1]], mesh.Points[tet[2]], mesh.Points[tet[3]]))
       smallest = std::min({ smallest, a, M_PI - a });
+  }
   return smallest;
 }
 
@@ -422,7 +428,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   }
   const int threads = params.NumberOfThreads;
   // The starting mesh must itself satisfy the bound, or no step could ever be checked against it.
-  const double bound = std::min(params.MinimumDihedralAngle / RadiansToDegrees, SmallestAngleMargin(mesh));
+  const double bound = std::min(params.MinimumDihedralAngle / RadiansToDegrees, SmallestAngleMargin(mesh, threads));
   StopRequests stops(progress);
   if (stops.Stopped(0.01))
   {
