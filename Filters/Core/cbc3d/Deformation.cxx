@@ -309,18 +309,17 @@ private:
   // Interior vertices around the held ones make room for them on the next step.
   void MakeRoom(std::vector<Eigen::Vector3d>& x, const std::vector<double>& share) const
   {
-    std::vector<char> movable(x.size(), 0);
-    for (const Tet& tet : this->Mesh.Tets)
+    std::vector<char> held(x.size());
+    for (std::size_t p = 0; p < x.size(); ++p)
     {
-      if (std::any_of(tet.begin(), tet.end(), [&](PointId p) { return share[p] < 1.0; }))
-      {
-        for (const PointId p : tet)
-        {
-          movable[p] = this->Interior[p];
-        }
-      }
+      held[p] = share[p] < 1.0;
     }
-    this->Smoothing.Smooth(x, movable, 2);
+    std::vector<char> movable = this->Smoothing.SharingATetWith(held, this->Params.NumberOfThreads);
+    for (std::size_t p = 0; p < x.size(); ++p)
+    {
+      movable[p] = movable[p] && this->Interior[p];
+    }
+    this->Smoothing.Smooth(x, movable, 2, this->Params.NumberOfThreads);
   }
 
   const TetMesh& Mesh;

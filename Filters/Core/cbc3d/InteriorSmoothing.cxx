@@ -1,5 +1,6 @@
 #include "cbc3d/InteriorSmoothing.h"
 
+#include "cbc3d/Parallel.h"
 #include "cbc3d/TetGeometry.h"
 
 #include <algorithm>
@@ -23,19 +24,42 @@ double Badness(const std::vector<Eigen::Vector3d>& x, const Tet& t)
 }
 } // namespace
 
+std::vector<char> InteriorSmoothing::SharingATetWith(const std::vector<char>& marked, int threads) const
+{
+  const std::int64_t count = static_cast<std::int64_t>(this->Around.Start.size()) - 1;
+  std::vector<char> sharing(count, 0);
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(ThreadCount(threads))
+  for (std::int64_t p = 0; p < count; ++p)
+  {
+    for (std::int64_t i = this->Around.Start[p]; i < this->Around.Start[p + 1] && !sharing[p]; ++i)
+    {
+      const Tet& tet = this->Tets[this->Around.Tets[i]];
+      sharing[p] = marked[tet[0]] || marked[tet[1]] || marked[tet[2]] || marked[tet[3]];
+    }
+  }
+  return sharing;
+}
+
 std::size_t InteriorSmoothing::Smooth(
-  std::vector<Eigen::Vector3d>& x, const std::vector<char>& movable, int sweeps) const
+  std::vector<Eigen::Vector3d>& x, const std::vector<char>& movable, int sweeps, int threads) const
 {
   // Each tet's badness at the current positions, kept as its vertices move: a vertex's worst
   // before a move is read, not measured again, and a move is given up at the first tet that
   // would be no better than that worst. The same values as measuring everything each time,
-  // so the same moves.
-  std::vector<double> badness(this->Tets.size(), -1.0); // -1: not measured yet
-  auto known = [&](std::int64_t t) {
-    if (badness[t] < 0.0)
-      badness[t] = Badness(x, this->Tets[t]);
-    return badness[t];
-  };
+  // so the same moves. A tet is first read either before any of its vertices moved or after a
+  // move stored its value, so the tets around movable points are all measured at the start,
+  // on the threads.
+  const std::int64_t tetCount = static_cast<std::int64_t>(this->Tets.size());
+  std::vector<double> badness(tetCount, -1.0); // -1: not around a movable point
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
+  for (std::int64_t t = 0; t < tetCount; ++t)
+  {
+    const Tet& tet = this->Tets[t];
+    if (movable[tet[0]] || movable[tet[1]] || movable[tet[2]] || movable[tet[3]])
+    {
+      badness[t] = Badness(x, tet);
+    }
+  }
   std::vector<double> trial;
   std::size_t moves = 0;
   for (int sweep = 0; sweep < sweeps; ++sweep)
@@ -55,7 +79,7 @@ std::size_t InteriorSmoothing::Smooth(
       centre /= 4.0 * double(end - begin);
       double before = 0.0;
       for (std::int64_t i = begin; i < end; ++i)
-        before = std::max(before, known(this->Around.Tets[i]));
+        before = std::max(before, badness[this->Around.Tets[i]]);
       const Eigen::Vector3d kept = x[p];
       x[p] = centre;
       trial.clear();

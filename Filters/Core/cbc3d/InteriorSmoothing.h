@@ -22,8 +22,14 @@ public:
   explicit InteriorSmoothing(const std::vector<Tet>& tets, std::size_t pointCount);
 
   /// Sweeps over the movable points in point order (serial, so the result does not depend on
-  /// threads), until a sweep moves none or `sweeps` are done. Returns how many moves it made.
-  std::size_t Smooth(std::vector<Eigen::Vector3d>& points, const std::vector<char>& movable, int sweeps) const;
+  /// threads; the tets' starting quality is measured on `threads`), until a sweep moves none
+  /// or `sweeps` are done. Returns how many moves it made.
+  std::size_t Smooth(
+    std::vector<Eigen::Vector3d>& points, const std::vector<char>& movable, int sweeps, int threads = 1) const;
+
+  /// Per point, whether it shares a tet with a point that `marked` holds for (itself
+  /// included), found on the threads.
+  std::vector<char> SharingATetWith(const std::vector<char>& marked, int threads) const;
 
 private:
   const std::vector<Tet>& Tets;

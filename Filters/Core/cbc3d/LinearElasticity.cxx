@@ -137,20 +137,38 @@ void SetUpColumns(const BlockPattern& pattern, int threads, Eigen::SparseMatrix<
   outer[3 * n] = static_cast<int>(9 * blocks);
 }
 
-// Adds the matrices of tets begin..end-1 (local[t - begin]) into the columns of their points.
+// The points of tets begin..end-1, each once (`batchOf[p]`: the last batch p was listed for).
+std::vector<PointId> PointsOfBatch(const TetMesh& mesh, std::int64_t begin, std::int64_t end,
+  std::vector<std::int64_t>& batchOf)
+{
+  std::vector<PointId> points;
+  for (std::int64_t t = begin; t < end; ++t)
+    for (const PointId p : mesh.Tets[t])
+      if (batchOf[p] != begin)
+      {
+        batchOf[p] = begin;
+        points.push_back(p);
+      }
+  return points;
+}
+
+// Adds the matrices of tets begin..end-1 (local[t - begin]) into the columns of their points
+// (`points`: only those, not every point of the mesh for every batch).
 // Each point's columns are written by one thread, its tets taken in ascending order
 // (`next[p]`: p's first tet not added yet), so every sum runs in tet order, as a serial
 // loop over the tets would add it: the same matrix for any thread count.
 void AddTetMatrices(const TetMesh& mesh, const PointTets& around, const BlockPattern& pattern,
   const std::vector<Eigen::Matrix<double, 12, 12>>& local, std::int64_t begin, std::int64_t end,
-  std::vector<std::int64_t>& next, int threads, Eigen::SparseMatrix<double>& stiffness)
+  const std::vector<PointId>& points, std::vector<std::int64_t>& next, int threads,
+  Eigen::SparseMatrix<double>& stiffness)
 {
-  const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
+  const std::int64_t n = static_cast<std::int64_t>(points.size());
   const int* outer = stiffness.outerIndexPtr();
   double* values = stiffness.valuePtr();
-#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
-  for (std::int64_t p = 0; p < n; ++p)
+#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
+  for (std::int64_t i = 0; i < n; ++i)
   {
+    const PointId p = points[i];
     const auto first = pattern.Neighbours.begin() + pattern.RowStart[p];
     const auto last = pattern.Neighbours.begin() + pattern.RowStart[p + 1];
     for (; next[p] < around.Start[p + 1] && around.Tets[next[p]] < end; ++next[p])
@@ -204,6 +222,7 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
   constexpr std::int64_t batch = 4096;
   std::vector<Eigen::Matrix<double, 12, 12>> local(static_cast<std::size_t>(std::min(batch, tetCount)));
   std::vector<std::int64_t> next(around.Start.begin(), around.Start.end() - 1);
+  std::vector<std::int64_t> batchOf(mesh.Points.size(), -1);
   for (std::int64_t begin = 0; begin < tetCount; begin += batch)
   {
     if (!KeepGoing(progress, 0.3 + 0.7 * double(begin) / double(tetCount)))
@@ -217,7 +236,8 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
       const auto found = materials.find(mesh.Labels[t]);
       local[t - begin] = TetStiffness(mesh, mesh.Tets[t], found == materials.end() ? fallback : found->second);
     }
-    AddTetMatrices(mesh, around, pattern, local, begin, end, next, threads, stiffness);
+    const std::vector<PointId> points = PointsOfBatch(mesh, begin, end, batchOf);
+    AddTetMatrices(mesh, around, pattern, local, begin, end, points, next, threads, stiffness);
   }
   return stiffness;
 }
