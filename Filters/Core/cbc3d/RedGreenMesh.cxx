@@ -1,11 +1,13 @@
 #include "cbc3d/RedGreenMesh.h"
 
+#include "cbc3d/Parallel.h"
 #include "cbc3d/RedGreenTables.h"
 #include "cbc3d/TetTopology.h"
 
 #include <algorithm>
 #include <array>
 #include <limits>
+#include <numeric>
 
 namespace cbc3d
 {
@@ -227,21 +229,39 @@ bool RedGreenMesh::Close(const std::function<bool()>& keepGoing)
 }
 
 bool RedGreenMesh::BuildConforming(std::vector<Tet>& tets, std::vector<std::int64_t>& source,
-  const std::function<bool()>& keepGoing, std::vector<std::uint8_t>* leafMasks) const
+  const std::function<bool()>& keepGoing, std::vector<std::uint8_t>* leafMasks, int threads) const
 {
-  tets.clear();
-  source.clear();
-  if (leafMasks)
+  // Each leaf's split edges and its number of children first, then the children written from
+  // each leaf's offset: both passes on the threads, in blocks so that a stop is seen soon, and
+  // the same list as one pass over the reds in order.
+  const std::int64_t count = static_cast<std::int64_t>(this->RedList.size());
+  const int threadCount = ThreadCount(threads);
+  constexpr std::int64_t Block = std::int64_t(1) << 16;
+  std::vector<std::uint8_t> masks(count, NotLeaf);
+  std::vector<std::int64_t> offset(count + 1, 0);
+  for (std::int64_t begin = 0; begin < count; begin += Block)
   {
-    leafMasks->assign(this->RedList.size(), NotLeaf);
-  }
-  for (std::size_t red = 0; red < this->RedList.size(); ++red)
-  {
-    if (StopAt(red, keepGoing))
+    if (keepGoing && !keepGoing())
     {
       return false;
     }
-    if (!this->RedList[red].Leaf)
+#pragma omp parallel for schedule(static) num_threads(threadCount)
+    for (std::int64_t red = begin; red < std::min(count, begin + Block); ++red)
+    {
+      if (this->RedList[red].Leaf)
+      {
+        masks[red] = this->SplitMask(this->RedList[red].Points);
+        offset[red + 1] = static_cast<std::int64_t>(GreenClosure(masks[red])->size());
+      }
+    }
+  }
+  std::partial_sum(offset.begin(), offset.end(), offset.begin());
+  tets.resize(offset[count]);
+  source.resize(offset[count]);
+#pragma omp parallel for schedule(static) num_threads(threadCount)
+  for (std::int64_t red = 0; red < count; ++red)
+  {
+    if (masks[red] == NotLeaf)
     {
       continue;
     }
@@ -251,21 +271,20 @@ bool RedGreenMesh::BuildConforming(std::vector<Tet>& tets, std::vector<std::int6
     {
       local[v] = tet[v];
     }
-    std::uint8_t mask = 0;
     for (int e = 0; e < 6; ++e)
     {
-      local[4 + e] = this->FindMidpoint(tet[TetEdges[e][0]], tet[TetEdges[e][1]]);
-      mask |= local[4 + e] >= 0 ? static_cast<std::uint8_t>(1u << e) : 0;
+      local[4 + e] = masks[red] & (1u << e) ? this->FindMidpoint(tet[TetEdges[e][0]], tet[TetEdges[e][1]]) : -1;
     }
-    if (leafMasks)
+    std::int64_t at = offset[red];
+    for (const LocalTet& child : *GreenClosure(masks[red]))
     {
-      (*leafMasks)[red] = mask;
+      tets[at] = Tet{ local[child[0]], local[child[1]], local[child[2]], local[child[3]] };
+      source[at++] = red;
     }
-    for (const LocalTet& child : *GreenClosure(mask))
-    {
-      tets.push_back(Tet{ local[child[0]], local[child[1]], local[child[2]], local[child[3]] });
-      source.push_back(static_cast<std::int64_t>(red));
-    }
+  }
+  if (leafMasks)
+  {
+    *leafMasks = std::move(masks);
   }
   return true;
 }

@@ -53,10 +53,12 @@ public:
   /// the red leaf that final tet i comes from; a leaf's tets come together, in the order of the
   /// reds. With `leafMasks`, each red's split edges (bit e: edge TetEdges[e]) where it is a
   /// leaf, NotLeaf where not: a leaf with the same mask in two builds made the same tets, in
-  /// the same order. Call after Close(). Asks `keepGoing` every few thousand reds; returns
-  /// false, the mesh unfinished, when it says stop.
+  /// the same order. Call after Close(). Asks `keepGoing` (from the calling thread) every few
+  /// tens of thousands of reds; returns false, the mesh unfinished, when it says stop. The
+  /// same tets for any number of `threads`.
   bool BuildConforming(std::vector<Tet>& tets, std::vector<std::int64_t>& source,
-    const std::function<bool()>& keepGoing = nullptr, std::vector<std::uint8_t>* leafMasks = nullptr) const;
+    const std::function<bool()>& keepGoing = nullptr, std::vector<std::uint8_t>* leafMasks = nullptr,
+    int threads = 1) const;
   static constexpr std::uint8_t NotLeaf = 0xff;
 
   /// The longest and the shortest edge of a red tet.

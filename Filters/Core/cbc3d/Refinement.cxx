@@ -101,7 +101,7 @@ bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threa
   LabelledMesh& mesh, const std::function<bool()>& keepGoing)
 {
   std::vector<std::uint8_t> masks;
-  if (!hierarchy.BuildConforming(mesh.Tets, mesh.Source, keepGoing, &masks))
+  if (!hierarchy.BuildConforming(mesh.Tets, mesh.Source, keepGoing, &masks, threads))
   {
     return false;
   }

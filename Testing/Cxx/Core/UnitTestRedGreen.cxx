@@ -394,3 +394,38 @@ TEST(RedGreenMesh, ALeafWithTheSameMaskBuildsTheSameTets)
   EXPECT_GT(same, 0);
   EXPECT_GT(changed, 0); // the split's neighbours took green closures
 }
+
+TEST(RedGreenMesh, TheConformingMeshFillsTheGridAndIsTheSameOnAnyNumberOfThreads)
+{
+  // A 4x4x4 grid of unit cubes (64 mm^3) with reds split at three levels: the leaves' children
+  // must tile it exactly, in the order of the reds, whatever the number of threads.
+  const cbc3d::TetMesh roots = cbc3d::testing::KuhnGrid(
+    4, 4, 4, [](int, int, int) { return true; }, [](int, int, int, int) { return 1; });
+  cbc3d::RedGreenMesh mesh(roots);
+  for (const std::size_t red : { std::size_t(7), std::size_t(100), std::size_t(250) })
+  {
+    mesh.SplitRed(red);
+    mesh.Close();
+  }
+  mesh.SplitRed(mesh.Reds().size() - 3); // a child of the last split: a third level
+  mesh.Close();
+  std::vector<cbc3d::Tet> serial, parallel;
+  std::vector<std::int64_t> serialSource, parallelSource;
+  std::vector<std::uint8_t> serialMasks, parallelMasks;
+  ASSERT_TRUE(mesh.BuildConforming(serial, serialSource, nullptr, &serialMasks, 1));
+  ASSERT_TRUE(mesh.BuildConforming(parallel, parallelSource, nullptr, &parallelMasks, 3));
+  EXPECT_EQ(serial, parallel);
+  EXPECT_EQ(serialSource, parallelSource);
+  EXPECT_EQ(serialMasks, parallelMasks);
+  EXPECT_TRUE(std::is_sorted(serialSource.begin(), serialSource.end()));
+  EXPECT_GT(serial.size(), roots.Tets.size());
+  double volume = 0.0;
+  for (const cbc3d::Tet& tet : serial)
+  {
+    const double v = cbc3d::SignedVolume(mesh.Points()[tet[0]], mesh.Points()[tet[1]],
+      mesh.Points()[tet[2]], mesh.Points()[tet[3]]);
+    EXPECT_GT(std::abs(v), 0.0);
+    volume += std::abs(v);
+  }
+  EXPECT_NEAR(volume, 64.0, 1e-9);
+}
