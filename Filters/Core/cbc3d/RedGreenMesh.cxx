@@ -22,9 +22,6 @@ std::uint64_t EdgeKey(PointId a, PointId b)
   return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint64_t>(b);
 }
 
-// The corners and edge midpoints of a tet, in local point order (see RedGreenTables.h).
-using LocalPoints = std::array<PointId, 10>;
-
 // When exactly two edges of one face are split, the face's third edge (which completes a green
 // closure, cheaper than a red split); -1 otherwise.
 int ThirdEdgeOfFace(std::uint8_t mask)
@@ -120,6 +117,20 @@ std::uint8_t RedGreenMesh::SplitMask(const Tet& tet) const
   return mask;
 }
 
+RedGreenMesh::LocalPoints RedGreenMesh::PointsOf(const Tet& tet, std::uint8_t mask) const
+{
+  LocalPoints local;
+  for (int v = 0; v < 4; ++v)
+  {
+    local[v] = tet[v];
+  }
+  for (int e = 0; e < 6; ++e)
+  {
+    local[4 + e] = mask & (1u << e) ? this->FindMidpoint(tet[TetEdges[e][0]], tet[TetEdges[e][1]]) : -1;
+  }
+  return local;
+}
+
 bool RedGreenMesh::HasClosure(const Tet& tet) const
 {
   const std::uint8_t mask = this->SplitMask(tet);
@@ -132,15 +143,7 @@ bool RedGreenMesh::HasClosure(const Tet& tet) const
   {
     return false;
   }
-  LocalPoints local;
-  for (int v = 0; v < 4; ++v)
-  {
-    local[v] = tet[v];
-  }
-  for (int e = 0; e < 6; ++e)
-  {
-    local[4 + e] = this->FindMidpoint(tet[TetEdges[e][0]], tet[TetEdges[e][1]]);
-  }
+  const LocalPoints local = this->PointsOf(tet, mask);
   // No child edge may be split: that would leave a point hanging on it.
   for (const LocalTet& child : *closure)
   {
@@ -265,16 +268,7 @@ bool RedGreenMesh::BuildConforming(std::vector<Tet>& tets, std::vector<std::int6
     {
       continue;
     }
-    const Tet& tet = this->RedList[red].Points;
-    LocalPoints local;
-    for (int v = 0; v < 4; ++v)
-    {
-      local[v] = tet[v];
-    }
-    for (int e = 0; e < 6; ++e)
-    {
-      local[4 + e] = masks[red] & (1u << e) ? this->FindMidpoint(tet[TetEdges[e][0]], tet[TetEdges[e][1]]) : -1;
-    }
+    const LocalPoints local = this->PointsOf(this->RedList[red].Points, masks[red]);
     std::int64_t at = offset[red];
     for (const LocalTet& child : *GreenClosure(masks[red]))
     {

@@ -66,9 +66,15 @@ public:
   double ShortestEdge(std::size_t red) const;
 
 private:
+  // The corners and edge midpoints of a tet, in local point order (see RedGreenTables.h).
+  using LocalPoints = std::array<PointId, 10>;
+
   PointId FindMidpoint(PointId a, PointId b) const;
   PointId Midpoint(PointId a, PointId b);
   std::uint8_t SplitMask(const Tet& tet) const;
+  /// A tet's local points: its corners, and the midpoints of the edges `mask` says are split
+  /// (-1 for the others).
+  LocalPoints PointsOf(const Tet& tet, std::uint8_t mask) const;
   bool HasClosure(const Tet& tet) const;
 
   /// Whether a leaf already found closed may have lost its closure: a new midpoint changes the
