@@ -277,12 +277,13 @@ bool IsSmall(const TissueComponents& components, std::int32_t component, int min
   return components.Size[component] < minimumVoxels;
 }
 
-// A component still missing (at the minimum edge length) gets the tet holding most of it; that
-// tet, and the tets of a component that only one or two tets stand for, are pinned to its label
-// (tet -> label) so that making the labels sound does not lose the component.
+// A component still missing (at the minimum edge length) gets the tet holding most of it
+// (counted in `restored`); that tet, and the tets of a component that only one or two tets
+// stand for, are pinned to its label (tet -> label) so that making the labels sound does not
+// lose the component.
 std::map<std::int64_t, std::int32_t> PinComponents(const LabelImage& image,
   const TissueComponents& components, int minimumVoxels, LabelledMesh& mesh,
-  const std::vector<char>& componentInMesh)
+  const std::vector<char>& componentInMesh, std::int64_t& restored)
 {
   constexpr std::size_t FewTets = 2;
   // A component in the mesh needs only whether FewTets tets or fewer hold it (its first tets,
@@ -327,6 +328,7 @@ std::map<std::int64_t, std::int32_t> PinComponents(const LabelImage& image,
       const auto& tets = found->second;
       const auto best = std::max_element(tets.begin(), tets.end(),
         [](const auto& a, const auto& b) { return a.second < b.second; }); // first of equals wins
+      restored += mesh.Labels[best->first] != label;
       mesh.Labels[best->first] = label;
       pinned[best->first] = label;
     }
@@ -461,37 +463,46 @@ bool MarkForCoverage(const BoundaryCoverage& coverage, const RedGreenMesh& hiera
 // A component still missing gets the tet holding most of it (PinComponents); then, with
 // SoundLabels: no hinge, no non-manifold surface, no piece the image does not have, and a
 // component the repair lost gets its tet back, pinned, and the repair runs again around it.
+// The labels always end as the repair left them: a component it still loses in the last round
+// stays lost (and the fidelity says so), since a sound mesh comes first.
 // Returns the fidelity of the labels as they end.
 std::map<std::int32_t, TissueFidelity> KeepComponentsAndMakeSound(const LabelImage& image,
   const TissueComponents& components, const RefinementParams& params,
   const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<std::int64_t, 4>>& across,
   LabelledMesh& mesh, std::vector<char>& componentInMesh, std::int64_t& relabelled)
 {
+  std::int64_t restored = 0;
   std::map<std::int64_t, std::int32_t> pinned =
-    PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
-  std::map<std::int32_t, TissueFidelity> fidelity;
-  bool measured = false; // the fidelity is that of the labels as they are
-  if (params.SoundLabels)
+    PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh, restored);
+  const auto measure = [&] {
+    return MeasureFidelity(
+      image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
+  };
+  if (!params.SoundLabels)
   {
-    for (int round = 0; round < SoundLabelRounds && !measured; ++round)
+    return measure();
+  }
+  for (int round = 1;; ++round)
+  {
+    relabelled += MakeLabelsSound(image, components, params.MinimumComponentVoxels,
+      points, mesh.Tets, across, mesh.Counts, mesh.VoxelOwner, pinned, NoLabel,
+      mesh.Labels, params.NumberOfThreads).Relabelled;
+    std::map<std::int32_t, TissueFidelity> fidelity = measure();
+    if (round == SoundLabelRounds)
     {
-      relabelled += MakeLabelsSound(image, components, params.MinimumComponentVoxels,
-        points, mesh.Tets, across, mesh.Counts, mesh.VoxelOwner, pinned, NoLabel,
-        mesh.Labels, params.NumberOfThreads).Relabelled;
-      fidelity = MeasureFidelity(
-        image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
-      const std::size_t before = pinned.size();
-      const auto lost = PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh);
-      pinned.insert(lost.begin(), lost.end());
-      measured = pinned.size() == before;
+      return fidelity;
+    }
+    // Pinning only tets the repair already respected, and giving back none, would change nothing.
+    const std::size_t before = pinned.size();
+    restored = 0;
+    const auto lost =
+      PinComponents(image, components, params.MinimumComponentVoxels, mesh, componentInMesh, restored);
+    pinned.insert(lost.begin(), lost.end());
+    if (pinned.size() == before && restored == 0)
+    {
+      return fidelity;
     }
   }
-  if (!measured)
-  {
-    fidelity = MeasureFidelity(
-      image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
-  }
-  return fidelity;
 }
 
 // The tissue tets, their points renumbered, and each one's red level.
