@@ -134,10 +134,14 @@ private:
   {
     return star.IsTet(node) ? this->Votes(star.Tets[node], cls) : OutsideVotes;
   }
-  // The outside cannot change class.
+  // The outside, and the tets a last resort left to it, cannot change class.
+  bool Changeable(const Star& star, int node) const
+  {
+    return star.IsTet(node) && (this->Frozen.empty() || !this->Frozen[star.Tets[node]]);
+  }
   std::int64_t Cost(const Star& star, int node, std::int32_t to) const
   {
-    if (!star.IsTet(node))
+    if (!this->Changeable(star, node))
     {
       return to == star.Class[node] ? 0 : OutsideVotes;
     }
@@ -163,6 +167,9 @@ private:
   std::vector<int> LocalOf; // scratch: tet -> its node in the star being loaded
   Star Scratch;             // the star being repaired
   std::map<std::int32_t, std::int64_t> TetsOfClass; // at the start: the last resort's ranks
+  // Tets of stars where the mesh itself pinches, left to the background for good by the last
+  // resort (empty until then): a neighbour taking them back would make the pinch again.
+  std::vector<char> Frozen;
 
   std::int64_t Rank(std::int32_t cls) const
   {
@@ -407,7 +414,7 @@ std::int64_t Repairer::Path(const Star& star, const std::vector<int>& from,
     }
     for (const int next : star.Links[node])
     {
-      const bool step = through[next] && star.IsTet(next);
+      const bool step = through[next] && this->Changeable(star, next);
       if (!step && !goal[next])
       {
         continue;
@@ -426,7 +433,7 @@ std::int64_t Repairer::Path(const Star& star, const std::vector<int>& from,
 
 void Repairer::Relabel(Star& star, int node, std::int32_t to, std::vector<std::int64_t>& changed)
 {
-  if (!star.IsTet(node))
+  if (!this->Changeable(star, node))
   {
     return; // the outside stays background
   }
@@ -648,10 +655,14 @@ void Repairer::Unify(Star& star, bool byRank, std::vector<std::int64_t>& changed
   Violation violation;
   if (this->FindViolation(star, violation))
   {
-    // The mesh boundary itself pinches here: leave the vertex to the background.
+    // The mesh boundary itself pinches here: leave the vertex to the background, for good.
     for (int node = 0; node < star.Nodes(); ++node)
       if (star.IsTet(node) && star.Class[node] != this->Background)
         this->Relabel(star, node, this->Background, changed);
+    if (this->Frozen.empty())
+      this->Frozen.assign(this->TetList.size(), 0);
+    for (const std::int64_t t : star.Tets)
+      this->Frozen[t] = 1;
   }
 }
 

@@ -67,6 +67,7 @@ SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponent
   ManifoldRepairResult repair =
     RepairManifoldLabels(points, tets, across, background, votes, classes, {}, numberOfThreads);
   result.Repairs += repair.Repairs;
+  bool unfinished = repair.Unrepaired > 0; // some repair stopped at its work bound
   const ImageRegions regions = KeptRegions(image, components, minimumVoxels, background,
     HasEnclosedBackground(tets, across, background, classes));
   for (int round = 0; round < CleanupRounds; ++round)
@@ -80,8 +81,10 @@ SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponent
     }
     repair = RepairManifoldLabels(points, tets, across, background, votes, classes, VerticesOf(tets, changed));
     result.Repairs += repair.Repairs;
+    unfinished = unfinished || repair.Unrepaired > 0;
   }
-  result.Unrepaired = repair.Unrepaired;
+  // A later repair looks only around later changes: count what an unfinished one left anywhere.
+  result.Unrepaired = unfinished ? CountNonManifoldVertices(points, tets, across, background, classes) : 0;
   for (std::size_t t = 0; t < labels.size(); ++t)
   {
     if (classes[t] != original[t])
