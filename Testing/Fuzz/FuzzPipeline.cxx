@@ -149,6 +149,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     {
       FailInvariant("refinement", "not one red level per tet");
     }
+    if (params.Refinement.SoundLabels && !cbc3d::MeasureMeshTopology(refined).SolverReady())
+    {
+      FailInvariant("refinement", "sound labels asked, but a hinge or a non-manifold surface is left");
+    }
   }
   if (refined.Tets.empty())
   {
