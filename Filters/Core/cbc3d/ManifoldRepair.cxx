@@ -578,8 +578,9 @@ void Repairer::RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_
 }
 
 // A class ringing the vertex (its complement in several parts): the hole that is cheapest to
-// fill takes the class. Where the class is the background, the ring may instead be cut by a
-// path of the hole's class (two tissues that touched only here then share a face).
+// fill takes the class. Where the class is the background, or where that hole holds a pinned
+// tet or the outside, the ring may instead be cut by a path of the hole's class (two tissues
+// that touched only here then share a face; a kept component's last tet stays).
 void Repairer::RepairRing(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed)
 {
   std::vector<int> hole;
@@ -594,7 +595,8 @@ void Repairer::RepairRing(Star& star, std::int32_t cls, std::vector<std::int64_t
     if (h != keeper && fillCost[h] < fillCost[fill])
       fill = h;
 
-  if (cls == this->Background)
+  // Filling the cheapest hole would take a pinned tet or the outside: cut the ring instead.
+  if (cls == this->Background || fillCost[fill] >= PinnedVotes)
   {
     // The class the hole holds most of, for the cutting path.
     std::int32_t to = cls;

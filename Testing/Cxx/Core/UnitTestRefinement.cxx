@@ -402,6 +402,8 @@ TEST(Refinement, RandomTissuesEndReadyForASolver)
     cbc3d::RefinementResult result;
     ASSERT_TRUE(cbc3d::RefineMesh(image, Lattice(image, 4.0), params, mesh, result).IsOk());
     ExpectSound(mesh, "seed " + std::to_string(seed));
+    for (const cbc3d::TissueFidelity& tissue : result.Tissues)
+      EXPECT_EQ(tissue.ComponentsInMesh, tissue.Components) << "seed " << seed << ", tissue " << tissue.Label;
   }
 }
 
