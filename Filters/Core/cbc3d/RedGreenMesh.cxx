@@ -44,6 +44,20 @@ int ThirdEdgeOfFace(std::uint8_t mask)
   return -1;
 }
 
+// Every edge of a tet, as a split mask: PointsOf then looks up all six midpoints.
+constexpr std::uint8_t EveryEdge = 0x3f;
+
+// The split edges of a tet from its local points (corners, then edge midpoints or -1).
+std::uint8_t SplitEdges(const std::array<PointId, 10>& local)
+{
+  std::uint8_t mask = 0;
+  for (int e = 0; e < 6; ++e)
+  {
+    mask |= local[4 + e] >= 0 ? static_cast<std::uint8_t>(1u << e) : 0;
+  }
+  return mask;
+}
+
 // Closing and building the mesh walk every red, a second or more on large meshes: they ask
 // for a stop every so many reds.
 bool StopAt(std::size_t red, const std::function<bool()>& keepGoing)
@@ -106,15 +120,7 @@ PointId RedGreenMesh::Midpoint(PointId a, PointId b)
 
 std::uint8_t RedGreenMesh::SplitMask(const Tet& tet) const
 {
-  std::uint8_t mask = 0;
-  for (int e = 0; e < 6; ++e)
-  {
-    if (this->FindMidpoint(tet[TetEdges[e][0]], tet[TetEdges[e][1]]) >= 0)
-    {
-      mask |= static_cast<std::uint8_t>(1u << e);
-    }
-  }
-  return mask;
+  return SplitEdges(this->PointsOf(tet, EveryEdge));
 }
 
 RedGreenMesh::LocalPoints RedGreenMesh::PointsOf(const Tet& tet, std::uint8_t mask) const
@@ -133,7 +139,9 @@ RedGreenMesh::LocalPoints RedGreenMesh::PointsOf(const Tet& tet, std::uint8_t ma
 
 bool RedGreenMesh::HasClosure(const Tet& tet) const
 {
-  const std::uint8_t mask = this->SplitMask(tet);
+  // Each midpoint looked up once: the mask, then the closure's edges, from the same points.
+  const LocalPoints local = this->PointsOf(tet, EveryEdge);
+  const std::uint8_t mask = SplitEdges(local);
   if (mask == 0)
   {
     return true; // the tet itself, none of whose edges is split: most leaves
@@ -143,7 +151,6 @@ bool RedGreenMesh::HasClosure(const Tet& tet) const
   {
     return false;
   }
-  const LocalPoints local = this->PointsOf(tet, mask);
   // No child edge may be split: that would leave a point hanging on it.
   for (const LocalTet& child : *closure)
   {
