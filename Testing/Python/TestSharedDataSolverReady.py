@@ -21,7 +21,7 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cbc3d_testing import Checks, read_nifti_header, shared_data_or_skip  # noqa: E402
+from cbc3d_testing import Checks, read_nifti_header, shared_data_or_skip, signed_volumes  # noqa: E402
 import numpy as np  # noqa: E402
 import mesh_topology as mt  # noqa: E402
 
@@ -42,8 +42,7 @@ LABELS_ONLY = {"nipype-tissue-labels.nii.gz": [("12 mm lattice, labels only", ["
 
 def tissue_volumes(points, tets, labels):
     """Each label's volume: its tets' signed volumes summed."""
-    p = points[tets]
-    volumes = np.einsum("ij,ij->i", np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), p[:, 3] - p[:, 0]) / 6.0
+    volumes = signed_volumes(points, tets)
     return {int(label): float(volumes[labels == label].sum()) for label in np.unique(labels)}
 
 

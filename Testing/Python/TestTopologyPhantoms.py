@@ -23,7 +23,7 @@ import time
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cbc3d_testing import Checks, kuhn_mesh, write_nifti  # noqa: E402
+from cbc3d_testing import Checks, kuhn_mesh, signed_volumes, write_nifti  # noqa: E402
 import mesh_topology as mt  # noqa: E402
 
 START = time.time()
@@ -41,11 +41,6 @@ check = Checks()
 
 
 # --- The checks, on any mesh ------------------------------------------------------------------
-
-def signed_volumes(points, tets):
-    p = np.asarray(points, dtype=float)[np.asarray(tets)]
-    return np.einsum("ij,ij->i", p[:, 1] - p[:, 0], np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 0])) / 6.0
-
 
 def verify(points, tets, labels, image, balls=False, euler=None):
     """[(passed, message)] for a mesh against the label image it stands for. balls: every

@@ -51,6 +51,14 @@ def dihedral_angles(p):
     return np.sort(np.stack(angles, axis=1), axis=1)
 
 
+def signed_volumes(points, tets):
+    """Each tet's signed volume (positive when positively oriented), with numpy."""
+    import numpy as np
+
+    p = np.asarray(points, dtype=float)[np.asarray(tets)]
+    return np.einsum("ij,ij->i", p[:, 1] - p[:, 0], np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 0])) / 6.0
+
+
 # NIfTI-1 datatype codes and struct formats.
 NIFTI_TYPES = {"uint8": (2, "B"), "int16": (4, "h"), "int32": (8, "i"), "float32": (16, "f"),
                "rgb24": (128, "BBB"), "uint32": (768, "I"), "int64": (1024, "q"), "uint64": (1280, "Q")}
