@@ -7,6 +7,7 @@
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
 
+#include <atomic>
 #include <csignal>
 #include <cstring>
 #include <exception>
@@ -50,6 +51,17 @@ public:
 };
 vtkStandardNewMacro(QuietOutputWindow);
 
+// Out of memory inside a parallel region can end several threads at once, each in the
+// terminate handler: the first one through reports and exits, the others wait for that (two
+// interleaved reports were seen under an address-space limit).
+std::atomic_flag Ending = ATOMIC_FLAG_INIT;
+void WaitIfAnotherThreadIsEnding()
+{
+  if (Ending.test_and_set())
+    for (;;)
+      pause();
+}
+
 void WriteError(const char* message, const char* detail = "")
 {
   for (const char* text : { "cbc3d: error: ", message, detail, "\n" })
@@ -63,6 +75,7 @@ void WriteError(const char* message, const char* detail = "")
 // parallel region is the one to expect. Writes without allocating: memory may have run out.
 void OnTerminate()
 {
+  WaitIfAnotherThreadIsEnding();
   cbc3d::PendingFiles::RemoveAll();
   try
   {
@@ -89,6 +102,7 @@ void OnTerminate()
 // library's check. One line instead of a core dump, and no file left behind.
 void OnAbort(int)
 {
+  WaitIfAnotherThreadIsEnding();
   cbc3d::PendingFiles::RemoveAll();
   WriteError(VtkAllocationFailed ? OutOfMemory : "aborted by a library (internal error)");
   _exit(1);
