@@ -4,6 +4,8 @@
 #include "cbc3d/TetGeometry.h"
 #include "cbc3d/TetVoxelSampler.h"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -231,6 +233,53 @@ bool SampleSlots(const LabelImage& image, const LatticeFrame& frame, int threads
   return !stop.load() && !(progress && !progress(0.95));
 }
 
+// The frame's vertex id at a position in the image-axis frame: -1 where no lattice vertex is.
+std::int64_t VertexIdAt(const LatticeFrame& frame, const Eigen::Vector3d& position)
+{
+  const Eigen::Vector3d half = (position - frame.CornerOrigin) * (2.0 / frame.H);
+  std::array<std::int64_t, 3> q;
+  for (int a = 0; a < 3; ++a)
+  {
+    q[a] = std::llround(half[a]);
+    if (std::abs(half[a] - double(q[a])) > 1e-3)
+      return -1;
+  }
+  const std::int64_t parity = q[0] & 1;
+  if ((q[1] & 1) != parity || (q[2] & 1) != parity)
+    return -1;
+  std::array<std::int64_t, 3> g;
+  for (int a = 0; a < 3; ++a)
+  {
+    g[a] = (q[a] - parity) / 2;
+    if (g[a] < 0 || g[a] > frame.Cubes[a] - parity)
+      return -1;
+  }
+  return parity ? frame.CentreId(g[0] + frame.Cubes[0] * (g[1] + frame.Cubes[1] * g[2]))
+                : frame.CornerId(g[0], g[1], g[2]);
+}
+
+// The slot (12 per cube) of a tet given by its frame vertex ids; -1 where it is none.
+std::int64_t SlotOf(const LatticeFrame& frame, std::array<std::int64_t, 4> ids)
+{
+  std::sort(ids.begin(), ids.end()); // corners first, then the two centres
+  const std::int64_t first = ids[2] - frame.CornerCount(), second = ids[3] - frame.CornerCount();
+  if (ids[1] >= frame.CornerCount() || first < 0)
+    return -1;
+  const std::int64_t steps[3] = { 1, frame.Cubes[0], frame.Cubes[0] * frame.Cubes[1] };
+  for (int axis = 0; axis < 3; ++axis)
+    for (int edge = 0; edge < 4 && second - first == steps[axis]; ++edge)
+    {
+      std::array<std::int64_t, 4> slot;
+      if (frame.SlotTet(first, axis, edge, slot))
+      {
+        std::sort(slot.begin(), slot.end());
+        if (slot == ids)
+          return 12 * first + 4 * axis + edge;
+      }
+    }
+  return -1;
+}
+
 // The kept slots as tets, serially and in slot order, so the numbering is the same for any
 // thread count; each tet positively oriented.
 void AssembleKeptSlots(const LabelImage& image, const LatticeFrame& frame,
@@ -297,5 +346,63 @@ Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, Tet
     progress(1.0);
   }
   return Status::Ok();
+}
+
+bool AddBackgroundRing(const LabelImage& image, TetMesh& lattice)
+{
+  if (lattice.Tets.empty() || image.BackgroundLabels.empty())
+    return false;
+  // The lattice's cube edge is its tets' longest edge; the frame follows from it and the image.
+  double h = 0.0;
+  for (int a = 0; a < 4; ++a)
+    for (int b = a + 1; b < 4; ++b)
+      h = std::max(h, (lattice.Points[lattice.Tets[0][a]] - lattice.Points[lattice.Tets[0][b]]).norm());
+  LatticeFrame frame;
+  if (!MakeFrame(image, h, frame))
+    return false;
+  const Eigen::Matrix3d toFrame = image.Direction.inverse();
+  std::vector<std::int64_t> idOfPoint(lattice.Points.size());
+  std::vector<PointId> pointOf(frame.CornerCount() + frame.CubeCount(), -1);
+  for (std::size_t p = 0; p < lattice.Points.size(); ++p)
+  {
+    idOfPoint[p] = VertexIdAt(frame, toFrame * (lattice.Points[p] - image.Origin));
+    if (idOfPoint[p] < 0)
+      return false; // not this image's lattice
+    pointOf[idOfPoint[p]] = static_cast<PointId>(p);
+  }
+  std::vector<char> present(12 * frame.CubeCount(), 0);
+  for (const Tet& tet : lattice.Tets)
+  {
+    const std::int64_t slot =
+      SlotOf(frame, { idOfPoint[tet[0]], idOfPoint[tet[1]], idOfPoint[tet[2]], idOfPoint[tet[3]] });
+    if (slot < 0)
+      return false;
+    present[slot] = 1;
+  }
+  const std::int32_t background = image.BackgroundLabels.front();
+  for (std::int64_t slot = 0; slot < std::int64_t(present.size()); ++slot)
+  {
+    std::array<std::int64_t, 4> ids;
+    if (present[slot] || !frame.SlotTet(slot / 12, int(slot % 12) / 4, int(slot % 4), ids) ||
+      std::none_of(ids.begin(), ids.end(), [&](std::int64_t id) { return pointOf[id] >= 0 && pointOf[id] < PointId(idOfPoint.size()); }))
+      continue;
+    Tet tet;
+    for (int v = 0; v < 4; ++v)
+    {
+      PointId& id = pointOf[ids[v]];
+      if (id < 0)
+      {
+        id = static_cast<PointId>(lattice.Points.size());
+        lattice.Points.push_back(image.Origin + image.Direction * frame.Position(ids[v]));
+      }
+      tet[v] = id;
+    }
+    const auto& p = lattice.Points;
+    if (SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) < 0.0)
+      std::swap(tet[2], tet[3]);
+    lattice.Tets.push_back(tet);
+    lattice.Labels.push_back(background);
+  }
+  return true;
 }
 } // namespace cbc3d

@@ -40,6 +40,13 @@ double EstimateLatticeBytes(const LabelImage& image, double edgeLength);
 /// voxel centre lies in (or on the boundary of) some kept tet.
 Status BuildBCCLattice(const LabelImage& image, const LatticeParams& params, TetMesh& mesh,
   const Progress& progress = nullptr);
+
+/// Adds to a lattice that BuildBCCLattice made for `image` every lattice tet that shares a vertex
+/// with one of its tets, labelled with the image's first background label: a ring of background
+/// round the tissues, where refinement's sound labelling can thicken a sheet of tissue one tet
+/// thick rather than punch it (without it the mesh ends where the tissue does, on both sides of
+/// the sheet). Returns false, the mesh unchanged, where the mesh is not such a lattice.
+bool AddBackgroundRing(const LabelImage& image, TetMesh& lattice);
 } // namespace cbc3d
 
 #endif

@@ -1,6 +1,7 @@
 #include "cbc3d/ManifoldRepair.h"
 
 #include "cbc3d/DisjointSets.h"
+#include "cbc3d/ImageRegions.h"
 #include "cbc3d/MeshFaces.h"
 #include "cbc3d/Parallel.h"
 #include "cbc3d/PointTets.h"
@@ -28,8 +29,11 @@ constexpr std::int64_t StepCost = 1;
 constexpr int RoundsPerVisit = 10;
 constexpr int VisitsBeforeFallback = 3;
 constexpr int VisitsBeforeRankedFallback = 6;
-// How far (in tets) to look for a join of two parts elsewhere before joining them here.
+// How far (in tets) to look for a join of two parts elsewhere before joining them here. The
+// background has more tets near a vertex (the lattice keeps a ring of them round the tissues),
+// so its search visits more for the same reach.
 constexpr std::size_t JoinSearchTets = 2000;
+constexpr std::size_t BackgroundJoinSearchTets = 3000;
 
 // The tets around one vertex as a graph: two are linked when they share a face through the
 // vertex. Each face on the mesh boundary through the vertex is an outside node, linked to its
@@ -103,7 +107,8 @@ class Repairer
 public:
   Repairer(const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
     const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
-    const ClassVotes& votes, std::vector<std::int32_t>& classes)
+    const ClassVotes& votes, std::vector<std::int32_t>& classes,
+    const std::vector<std::int32_t>& backgroundRegionOfTet = {})
     : PointList(points)
     , TetList(tets)
     , Across(across)
@@ -111,6 +116,7 @@ public:
     , Background(background)
     , Votes(votes)
     , Classes(classes)
+    , RegionOfTet(backgroundRegionOfTet)
     , LocalOf(tets.size(), -1)
   {
     for (const std::int32_t cls : classes)
@@ -153,6 +159,13 @@ private:
   bool JoinedNearby(const Star& star, const std::vector<int>& part, int keeper, int spare, std::int32_t cls);
   bool GivingJoinsNearby(const Star& star, const std::vector<std::int32_t>& receivers,
     const std::vector<std::pair<int, std::int32_t>>& giveAway);
+  std::vector<int> TouchedParts(const Star& star, const std::vector<int>& part, std::int32_t to,
+    const std::vector<std::pair<int, std::int32_t>>& giveAway) const;
+  std::vector<std::int32_t> RegionsOfPart(const Star& star, const std::vector<int>& part, int which) const;
+  bool KeptApart(const Star& star, const std::vector<int>& part, int a, int b) const;
+  bool GivingOpensCavity(const Star& star, const std::vector<std::pair<int, std::int32_t>>& giveAway) const;
+  std::int64_t PlanGiveAway(const Star& star, const std::vector<int>& part, int spare, std::int32_t cls,
+    std::vector<std::int32_t>& alternatives, std::vector<std::pair<int, std::int32_t>>& giveAway) const;
   void RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed);
   void RepairRing(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed);
   void Unify(Star& star, bool byRank, std::vector<std::int64_t>& changed);
@@ -164,6 +177,7 @@ private:
   std::int32_t Background;
   const ClassVotes& Votes;
   std::vector<std::int32_t>& Classes;
+  const std::vector<std::int32_t>& RegionOfTet; // empty: the image has no cavity to keep
   std::vector<int> LocalOf; // scratch: tet -> its node in the star being loaded
   Star Scratch;             // the star being repaired
   std::map<std::int32_t, std::int64_t> TetsOfClass; // at the start: the last resort's ranks
@@ -459,7 +473,8 @@ bool Repairer::JoinedNearby(const Star& star, const std::vector<int>& part, int 
   for (const std::int64_t t : queue)
     this->LocalOf[t] = Visited;
   bool joined = false;
-  for (std::size_t next = 0; next < queue.size() && next < JoinSearchTets && !joined; ++next)
+  const std::size_t bound = cls == this->Background ? BackgroundJoinSearchTets : JoinSearchTets;
+  for (std::size_t next = 0; next < queue.size() && next < bound && !joined; ++next)
   {
     for (const std::int64_t n : this->Across[queue[next]])
     {
@@ -481,6 +496,25 @@ bool Repairer::JoinedNearby(const Star& star, const std::vector<int>& part, int 
   return joined;
 }
 
+// The parts (`part`: of class `to` around the vertex) next to the tets that `giveAway` gives to
+// `to`, sorted.
+std::vector<int> Repairer::TouchedParts(const Star& star, const std::vector<int>& part, std::int32_t to,
+  const std::vector<std::pair<int, std::int32_t>>& giveAway) const
+{
+  std::vector<int> touched;
+  for (const auto& [node, cls] : giveAway)
+  {
+    if (cls != to)
+      continue;
+    for (const int next : star.Links[node])
+      if (part[next] >= 0)
+        touched.push_back(part[next]);
+  }
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  return touched;
+}
+
 // Whether giving tets away (each node to its class in `giveAway`, one of `receivers`) would
 // join two parts of a receiving class around the vertex that the class already joins nearby:
 // close a loop in it.
@@ -492,22 +526,85 @@ bool Repairer::GivingJoinsNearby(const Star& star, const std::vector<std::int32_
     std::vector<int> part;
     if (Components(star, [&](int node) { return star.Class[node] == to; }, part) < 2)
       continue;
-    std::vector<int> touched; // the receiver's parts next to the tets it would get
-    for (const auto& [node, cls] : giveAway)
-    {
-      if (cls != to)
-        continue;
-      for (const int next : star.Links[node])
-        if (part[next] >= 0)
-          touched.push_back(part[next]);
-    }
-    std::sort(touched.begin(), touched.end());
-    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    const std::vector<int> touched = this->TouchedParts(star, part, to, giveAway);
     for (std::size_t i = 1; i < touched.size(); ++i)
       if (this->JoinedNearby(star, part, touched[0], touched[i], to))
         return true;
   }
   return false;
+}
+
+// The image's background components (kept cavities, or the outside) that the tets of one part
+// stand for, sorted: none where the image has no cavity to keep.
+std::vector<std::int32_t> Repairer::RegionsOfPart(const Star& star, const std::vector<int>& part, int which) const
+{
+  std::vector<std::int32_t> regions;
+  if (this->RegionOfTet.empty())
+    return regions;
+  for (int node = 0; node < static_cast<int>(star.Tets.size()); ++node)
+    if (part[node] == which && this->RegionOfTet[star.Tets[node]] != NoRegion)
+      regions.push_back(this->RegionOfTet[star.Tets[node]]);
+  std::sort(regions.begin(), regions.end());
+  regions.erase(std::unique(regions.begin(), regions.end()), regions.end());
+  return regions;
+}
+
+// Whether two parts of the background stand for components the image keeps apart: each stands
+// for some, and they share none.
+bool Repairer::KeptApart(const Star& star, const std::vector<int>& part, int a, int b) const
+{
+  const std::vector<std::int32_t> first = this->RegionsOfPart(star, part, a);
+  const std::vector<std::int32_t> second = this->RegionsOfPart(star, part, b);
+  if (first.empty() || second.empty())
+    return false;
+  return std::none_of(first.begin(), first.end(),
+    [&](std::int32_t r) { return std::binary_search(second.begin(), second.end(), r); });
+}
+
+// Whether giving tets to the background would join two of its parts around the vertex that the
+// image keeps apart: open a cavity of the image (a hole in the wall round it).
+bool Repairer::GivingOpensCavity(const Star& star, const std::vector<std::pair<int, std::int32_t>>& giveAway) const
+{
+  if (this->RegionOfTet.empty())
+    return false;
+  std::vector<int> part;
+  if (Components(star, [&](int node) { return star.Class[node] == this->Background; }, part) < 2)
+    return false;
+  const std::vector<int> touched = this->TouchedParts(star, part, this->Background, giveAway);
+  for (std::size_t i = 0; i < touched.size(); ++i)
+    for (std::size_t j = i + 1; j < touched.size(); ++j)
+      if (this->KeptApart(star, part, touched[i], touched[j]))
+        return true;
+  return false;
+}
+
+// Giving the spare part of a class away: each of its tets to the neighbouring class (one of
+// `alternatives`) it holds most of. Returns the votes that costs (Unreachable: no neighbour).
+std::int64_t Repairer::PlanGiveAway(const Star& star, const std::vector<int>& part, int spare, std::int32_t cls,
+  std::vector<std::int32_t>& alternatives, std::vector<std::pair<int, std::int32_t>>& giveAway) const
+{
+  for (int node = 0; node < star.Nodes(); ++node)
+    if (part[node] == spare)
+      for (const int next : star.Links[node])
+        if (star.Class[next] != cls)
+          alternatives.push_back(star.Class[next]);
+  std::sort(alternatives.begin(), alternatives.end());
+  alternatives.erase(std::unique(alternatives.begin(), alternatives.end()), alternatives.end());
+  if (alternatives.empty())
+    return Unreachable;
+  std::int64_t cost = 0;
+  for (int node = 0; node < star.Nodes(); ++node)
+  {
+    if (part[node] != spare)
+      continue;
+    std::int32_t to = alternatives.front();
+    for (const std::int32_t other : alternatives)
+      if (this->VotesOf(star, node, other) > this->VotesOf(star, node, to))
+        to = other;
+    giveAway.emplace_back(node, to);
+    cost += this->Cost(star, node, to);
+  }
+  return cost;
 }
 
 // A class in several parts around the vertex: the part it can best spare is either joined to
@@ -526,28 +623,9 @@ void Repairer::RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_
     if (p != keeper && worth[p] < worth[spare])
       spare = p;
 
-  // Giving the spare part away: each tet to the neighbouring class it holds most of.
   std::vector<std::int32_t> alternatives;
-  for (int node = 0; node < star.Nodes(); ++node)
-    if (part[node] == spare)
-      for (const int next : star.Links[node])
-        if (star.Class[next] != cls)
-          alternatives.push_back(star.Class[next]);
-  std::sort(alternatives.begin(), alternatives.end());
-  alternatives.erase(std::unique(alternatives.begin(), alternatives.end()), alternatives.end());
   std::vector<std::pair<int, std::int32_t>> giveAway;
-  std::int64_t giveCost = alternatives.empty() ? Unreachable : 0;
-  for (int node = 0; node < star.Nodes(); ++node)
-  {
-    if (part[node] != spare || alternatives.empty())
-      continue;
-    std::int32_t to = alternatives.front();
-    for (const std::int32_t other : alternatives)
-      if (this->VotesOf(star, node, other) > this->VotesOf(star, node, to))
-        to = other;
-    giveAway.emplace_back(node, to);
-    giveCost += this->Cost(star, node, to);
-  }
+  const std::int64_t giveCost = this->PlanGiveAway(star, part, spare, cls, alternatives, giveAway);
 
   // Joining it: the cheapest path of other tets from the keeper to the spare part.
   std::vector<int> from, path;
@@ -563,11 +641,17 @@ void Repairer::RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_
   // background's loop is taken all the same where giving its part away would close one in a
   // tissue instead: a loop of the background around a tissue that is joined elsewhere is no
   // handle of the tissue, a second join of the tissue is (the ventricles' surface gets the
-  // image's Euler characteristic this way, -2 instead of -4).
+  // image's Euler characteristic this way, -2 instead of -4). Neither may open a cavity of the
+  // image: background parts that stand for a cavity and for the outside (or for two cavities)
+  // stay apart whatever it costs, so a thin wall round a cavity is thickened, not punched.
   const std::int64_t joinCost = this->Path(star, from, through, goal, cls, path);
+  const bool opensCavity = cls == this->Background ? this->KeptApart(star, part, keeper, spare)
+                                                   : this->GivingOpensCavity(star, giveAway);
   const bool closesLoop = joinCost < giveCost && this->JoinedNearby(star, part, keeper, spare, cls) &&
     !(cls == this->Background && this->GivingJoinsNearby(star, alternatives, giveAway));
-  if (joinCost < giveCost && !closesLoop)
+  const bool join = opensCavity ? cls != this->Background && joinCost < Unreachable
+                                : joinCost < giveCost && !closesLoop;
+  if (join)
   {
     for (const int node : path)
       this->Relabel(star, node, cls, changed);
@@ -723,11 +807,11 @@ std::vector<char> ManifoldVertices(const Repairer& repairer, std::size_t pointCo
 ManifoldRepairResult RepairManifoldLabels(const std::vector<Eigen::Vector3d>& points,
   const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
   std::int32_t background, const ClassVotes& votes, std::vector<std::int32_t>& classes,
-  const std::vector<PointId>& seeds, int numberOfThreads)
+  const std::vector<PointId>& seeds, int numberOfThreads, const std::vector<std::int32_t>& backgroundRegionOfTet)
 {
   ManifoldRepairResult result;
   const std::size_t pointCount = points.size();
-  Repairer repairer(points, tets, across, background, votes, classes);
+  Repairer repairer(points, tets, across, background, votes, classes, backgroundRegionOfTet);
   std::deque<PointId> queue;
   std::vector<char> queued(pointCount, 0);
   std::vector<int> visits(pointCount, 0);

@@ -34,14 +34,18 @@ struct ManifoldRepairResult
 /// of other tets between the parts takes the class) or loses its smaller part (to the best
 /// neighbouring class), whichever changes fewer voxel votes; a class ringing a vertex is
 /// thickened into the smaller hole of the ring. A vertex that keeps failing gets its whole star
-/// in the class with the most votes there. Only vertices next to a change are looked at again,
+/// in the class with the most votes there. Where `backgroundRegionOfTet` (BackgroundRegionOfTets)
+/// is given, no repair joins two parts of the background that stand for components the image
+/// keeps apart (a cavity and the outside, or two cavities): a thin wall round a cavity is
+/// thickened rather than punched. Only vertices next to a change are looked at again,
 /// so the work follows the defects, not the mesh. `seeds`, when not empty, are the only
 /// vertices examined at first; without them, every vertex is first checked in parallel on
 /// `numberOfThreads` threads (0 = all cores). Deterministic: the same for any thread count.
 ManifoldRepairResult RepairManifoldLabels(const std::vector<Eigen::Vector3d>& points,
   const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
   std::int32_t background, const ClassVotes& votes, std::vector<std::int32_t>& classes,
-  const std::vector<PointId>& seeds = {}, int numberOfThreads = 1);
+  const std::vector<PointId>& seeds = {}, int numberOfThreads = 1,
+  const std::vector<std::int32_t>& backgroundRegionOfTet = {});
 
 /// The vertices where some class is not manifold (the condition RepairManifoldLabels makes).
 std::int64_t CountNonManifoldVertices(const std::vector<Eigen::Vector3d>& points,

@@ -1,5 +1,7 @@
 #include "cbc3d/Refinement.h"
 
+#include "cbc3d/BCCLattice.h"
+
 #include "cbc3d/BoundaryCoverage.h"
 #include "cbc3d/ManifoldRepair.h"
 #include "cbc3d/MeshFaces.h"
@@ -592,7 +594,11 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
     params.MemoryLimitBytes > 0 ? params.MemoryLimitBytes : PhysicalMemoryBytes() / 2;
 
   const TissueComponents components = FindTissueComponents(image);
-  RedGreenMesh hierarchy(lattice);
+  // Sound labels need background on both sides of a thin sheet of tissue to thicken it into.
+  TetMesh ringed = lattice;
+  if (params.SoundLabels)
+    AddBackgroundRing(image, ringed);
+  RedGreenMesh hierarchy(ringed);
   const std::unique_ptr<BoundaryCoverage> coverage = MakeCoverage(image, components, params, hierarchy, result);
   LabelledMesh mesh;
   std::map<std::int32_t, TissueFidelity> fidelity;

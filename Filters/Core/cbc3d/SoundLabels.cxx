@@ -12,32 +12,6 @@ namespace
 // Rounds of stray removal, each followed by repairs around what it changed.
 constexpr int CleanupRounds = 4;
 
-// The image components the mesh should keep; the background's cavities only when asked (their
-// flood fill is the costly part, and most meshes have no cavity to check).
-ImageRegions KeptRegions(const LabelImage& image, const TissueComponents& tissues, int minimumVoxels,
-  std::int32_t background, bool withCavities)
-{
-  BackgroundComponents gaps = withCavities ? FindBackgroundComponents(image) : BackgroundComponents();
-  ImageRegions regions;
-  regions.Tissues = &tissues;
-  const std::int32_t tissueCount = static_cast<std::int32_t>(tissues.Label.size());
-  for (std::int32_t c = 0; c < tissueCount; ++c)
-  {
-    regions.ClassOfRegion.push_back(tissues.Label[c]);
-    regions.Speck.push_back(tissues.Size[c] < minimumVoxels);
-  }
-  // Every background component has a region (unused where it is not kept), as before.
-  for (std::size_t c = 0; c < gaps.Size.size(); ++c)
-  {
-    const bool kept = !gaps.TouchesBorder[c] && gaps.Size[c] >= minimumVoxels;
-    regions.RegionOfGap.push_back(kept ? tissueCount + std::int32_t(c) : -1);
-    regions.ClassOfRegion.push_back(background);
-    regions.Speck.push_back(0);
-  }
-  regions.GapOfVoxel = std::move(gaps.ComponentOfVoxel);
-  return regions;
-}
-
 std::vector<PointId> VerticesOf(const std::vector<Tet>& tets, const std::vector<std::int64_t>& changed)
 {
   std::vector<PointId> vertices;
@@ -63,13 +37,14 @@ SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponent
     const std::int64_t bonus = pin != pinned.end() && pin->second == cls ? PinnedVotes : 0;
     return bonus + (cls == background ? counts[t].Total() - counts[t].TissueTotal(image) : counts[t].Of(cls));
   };
+  // The repair must not open a cavity of the image: it reads which cavity each tet stands for.
+  const ImageRegions regions = FindImageRegions(image, components, minimumVoxels, background);
+  const std::vector<std::int32_t> regionOfTet = BackgroundRegionOfTets(regions, voxelOwner, tets.size());
   SoundLabelsResult result;
-  ManifoldRepairResult repair =
-    RepairManifoldLabels(points, tets, across, background, votes, classes, {}, numberOfThreads);
+  ManifoldRepairResult repair = RepairManifoldLabels(
+    points, tets, across, background, votes, classes, {}, numberOfThreads, regionOfTet);
   result.Repairs += repair.Repairs;
   bool unfinished = repair.Unrepaired > 0; // some repair stopped at its work bound
-  const ImageRegions regions = KeptRegions(image, components, minimumVoxels, background,
-    HasEnclosedBackground(tets, across, background, classes));
   for (int round = 0; round < CleanupRounds; ++round)
   {
     std::vector<std::int64_t> changed;
@@ -79,7 +54,8 @@ SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponent
     {
       break;
     }
-    repair = RepairManifoldLabels(points, tets, across, background, votes, classes, VerticesOf(tets, changed));
+    repair = RepairManifoldLabels(
+      points, tets, across, background, votes, classes, VerticesOf(tets, changed), 1, regionOfTet);
     result.Repairs += repair.Repairs;
     unfinished = unfinished || repair.Unrepaired > 0;
   }

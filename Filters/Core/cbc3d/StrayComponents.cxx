@@ -68,12 +68,10 @@ std::vector<char> KeptPieces(DisjointSets& pieces, const VoxelOwners& voxelOwner
   };
   // Counts are whole numbers, and the choice below does not depend on the order of the pieces.
   regions.Tissues->ForEachVoxel([&](std::int64_t v, std::int32_t component) { hold(component, voxelOwner[v]); });
-  for (std::size_t v = 0; v < regions.GapOfVoxel.size(); ++v)
-  {
-    const std::int32_t gap = regions.GapOfVoxel[v];
-    if (gap >= 0)
+  regions.Gaps.ForEachVoxel([&](std::int64_t v, std::int32_t gap) {
+    if (regions.RegionOfGap[gap] >= 0)
       hold(regions.RegionOfGap[gap], voxelOwner[v]);
-  }
+  });
   flush();
   std::vector<char> kept(classes.size() + 1, 0);
   kept[pieces.Find(outside)] = 1;
@@ -145,16 +143,5 @@ std::int64_t RemoveStrayComponents(const std::vector<Tet>& tets,
       }
   }
   return std::count(strayRoot.begin(), strayRoot.end(), 1);
-}
-bool HasEnclosedBackground(const std::vector<Tet>& tets,
-  const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
-  const std::vector<std::int32_t>& classes)
-{
-  DisjointSets pieces = FindPieces(tets, across, background, classes);
-  const std::int64_t outside = pieces.Find(static_cast<std::int64_t>(tets.size()));
-  for (std::size_t t = 0; t < tets.size(); ++t)
-    if (classes[t] == background && pieces.Find(static_cast<std::int64_t>(t)) != outside)
-      return true;
-  return false;
 }
 } // namespace cbc3d

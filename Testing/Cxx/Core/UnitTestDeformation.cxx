@@ -299,13 +299,16 @@ TEST(Deformation, RigidlyShiftedImageMovesTheMeshRigidly)
   EXPECT_NEAR((after.first - before.first).z(), 0.0, 0.1);
   EXPECT_NEAR(after.second / before.second, 1.0, 0.02);
   // Vertex by vertex: the bulk moves by the shift (median deviation under 0.05 voxel), and
-  // none strays from it by much more than a voxel (the elastic step still fits the surface).
+  // none strays from it by much more than a voxel (the elastic step still fits the surface; the
+  // worst one vertex: 1.02 voxels, 1.20 since refinement's background ring changed the ball's
+  // mesh by 10 tets, with 99% under 0.6).
   std::vector<double> deviation;
   for (std::size_t p = 0; p < moved.Points.size(); ++p)
     deviation.push_back((moved.Points[p] - fitted.Points[p] - Eigen::Vector3d(2.0, 0.0, 0.0)).norm());
   std::sort(deviation.begin(), deviation.end());
   EXPECT_LT(deviation[deviation.size() / 2], 0.05);
-  EXPECT_LE(deviation.back(), 1.1);
+  EXPECT_LE(deviation.back(), 1.25);
+  EXPECT_LT(deviation[deviation.size() * 99 / 100], 0.65);
   for (const auto& tet : moved.Tets)
     ASSERT_TRUE(cbc3d::DihedralAnglesWithin(moved.Points[tet[0]], moved.Points[tet[1]], moved.Points[tet[2]],
       moved.Points[tet[3]], params.MinimumDihedralAngle / cbc3d::RadiansToDegrees * (1.0 - 1e-9)));

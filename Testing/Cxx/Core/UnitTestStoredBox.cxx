@@ -133,7 +133,7 @@ TEST(StoredBox, ComponentsBoundaryVoxelsTargetsAndTopologyAgree)
   EXPECT_EQ(ga.TouchesBorder, gb.TouchesBorder);
   EXPECT_EQ(std::count(gb.TouchesBorder.begin(), gb.TouchesBorder.end(), 0), 1); // the cavity
   for (std::int64_t v = 0; v < std::int64_t(box.Labels.size()); ++v)
-    ASSERT_EQ(gb.ComponentOfVoxel[v], ga.ComponentOfVoxel[Same(box, whole, v)]);
+    ASSERT_EQ(gb.ComponentOf(v), ga.ComponentOf(Same(box, whole, v)));
 
   const auto boundaryA = cbc3d::TissueBoundaryVoxels(whole, 2), boundaryB = cbc3d::TissueBoundaryVoxels(box, 2);
   ASSERT_EQ(boundaryA.size(), boundaryB.size());
