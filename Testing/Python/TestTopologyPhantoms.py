@@ -68,8 +68,8 @@ def verify(points, tets, labels, image, balls=False, euler=None):
                         "%s: face components %d <= image 6-components %d"
                         % (name, r["face_components"], kept)))
         if balls == "handles known":
-            # Open problem: the repair can leave handles here (joins along a diagonal contact,
-            # holes in a plate thinner than the tets); printed, not failed, until it is solved.
+            # Open problem: the repair can leave handles here (joins along a diagonal contact of
+            # blocks or of a checkerboard's tissues); printed, not failed, until it is solved.
             ball = r["euler"] == 2 * r["face_components"]
             results.append((True, "%s%s: every piece a ball, surface Euler %d vs 2 x %d pieces"
                             % ("" if ball else "KNOWN (handles) ", name, r["euler"], r["face_components"])))
@@ -170,8 +170,10 @@ def phantoms():
     # meet only along edges: 24 components of 8 voxels each.
     x, y, z = np.meshgrid(*[np.arange(s) for s in (32, 32, 16)], indexing="ij")
     slab = (x >= 4) & (x < 28) & (y >= 4) & (y < 28) & (z >= 4) & (z < 12)
+    # The staircase had 8-10 handles (Euler -14 to -18) until refinement kept a ring of
+    # background round the tissue: the plate, one tet thick, could only be punched.
     out.append(("diagonal staircase plate (6-connected)",
-                (slab & ((x + y == 31) | (x + y == 32))).astype(np.int16), dict(balls="handles known"), []))
+                (slab & ((x + y == 31) | (x + y == 32))).astype(np.int16), dict(balls=True), []))
     out.append(("diagonal plate of columns on edges (24 6-components)",
                 (slab & (x + y == 31)).astype(np.int16), dict(balls=True), []))
     # Checkerboards: every tissue voxel a 6-component of its own (none of 8 voxels), beside a
@@ -246,23 +248,38 @@ for name, image, options, extra in phantoms():
                image_figures[key]["euler"] if key in image_figures else 0)
             for key, r in report.items())))
 
-# A thin shell of coarse voxels (a skull at 3.9 mm): radii 25 to 27 voxels in 64^3, meshed at
-# the defaults. Sound, and its voxels' volume within 3% (deformation keeps volumes).
+# A thin shell of coarse voxels (a skull at 3.9 mm): radii 25 to 27 voxels in 64^3. Sound, its
+# voxels' volume within 3% (deformation keeps volumes), and its cavity kept: its surface two
+# spheres, Euler characteristic 4 as the image's (it had 50 holes at the defaults, -96, and
+# hundreds at 12 and 16 mm, before refinement kept a ring of background round the tissue). At
+# 8 mm a few holes remain (-2): printed as KNOWN, not failed.
 x, y, z = centres((64, 64, 64))
 d = np.sqrt((x - 32) ** 2 + (y - 32) ** 2 + (z - 32) ** 2)
 shell = ((d > 25) & (d <= 27)).astype(np.int16)
 path = os.path.join(OUTPUT, "coarse_thin_shell.nii")
 write_nifti(path, shell.shape, shell.transpose(2, 1, 0).ravel().tolist(), dtype="int16", pixdim=(1.0, 3.9, 3.9, 3.9))
-mesh_path = os.path.join(OUTPUT, "coarse_thin_shell.vtu")
-run = subprocess.run([CLI, path, "-o", mesh_path, "--threads", "2", "--quiet"], capture_output=True, text=True)
-if check(run.returncode == 0, "coarse thin shell: cbc3d exits 0 %s" % run.stderr.strip()):
+for setting, known in (([], False), (["--bcc-size", "16"], False), (["--bcc-size", "12"], False),
+                       (["--bcc-size", "8"], True)):
+    label = "coarse thin shell, %s" % (" ".join(setting) or "defaults")
+    mesh_path = os.path.join(OUTPUT, "coarse_thin_shell_%s.vtu" % ("_".join(setting).strip("-") or "default"))
+    run = subprocess.run([CLI, path, "-o", mesh_path, "--threads", "2", "--quiet"] + setting,
+                         capture_output=True, text=True)
+    if not check(run.returncode == 0, "%s: cbc3d exits 0 %s" % (label, run.stderr.strip())):
+        continue
     points, tets, labels = mt.read_mesh(mesh_path)
     results, report, image_figures = verify(points, tets, labels, shell)
     for ok, message in results:
-        check(ok, "coarse thin shell: %s" % message)
+        check(ok, "%s: %s" % (label, message))
     share = signed_volumes(points, tets).sum() / (int(shell.sum()) * 3.9 ** 3)
-    check(abs(share - 1.0) <= 0.03, "coarse thin shell: %.1f%% of its voxels' volume (within 3%%); surface Euler %d "
-          "(image %d)" % (100.0 * share, report[1]["euler"], image_figures[1]["euler"]))
+    check(abs(share - 1.0) <= 0.03, "%s: %.1f%% of its voxels' volume (within 3%%)" % (label, 100.0 * share))
+    euler, image_euler = report[1]["euler"], image_figures[1]["euler"]
+    if known and euler != image_euler:
+        check(True, "KNOWN (holes) %s: surface Euler %d vs image's %d" % (label, euler, image_euler))
+    else:
+        check(euler == image_euler and image_euler == 4,
+              "%s: surface Euler %d == image's %d (the cavity kept, no hole)" % (label, euler, image_euler))
+    figures.append("%-55s %-24s %d tets, Euler %d (image %d)" % ("coarse thin shell", " ".join(setting) or "defaults",
+                                                                 len(tets), euler, image_euler))
 
 # Bare checkerboards (8^3, in a margin of 4): no tissue has a 6-component of 8 voxels, so a
 # sound mesh has no tet at all; cbc3d must refuse with a message and write no mesh.
