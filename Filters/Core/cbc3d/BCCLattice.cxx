@@ -280,6 +280,31 @@ std::int64_t SlotOf(const LatticeFrame& frame, std::array<std::int64_t, 4> ids)
   return -1;
 }
 
+// Appends the tet of these frame vertex ids, positively oriented, and the points it needs that
+// `pointOf` (frame id -> point, -1: none yet) does not have yet.
+void AppendTet(const LabelImage& image, const LatticeFrame& frame, const std::array<std::int64_t, 4>& ids,
+  std::int32_t label, std::vector<PointId>& pointOf, TetMesh& mesh)
+{
+  Tet tet;
+  for (int v = 0; v < 4; ++v)
+  {
+    PointId& id = pointOf[ids[v]];
+    if (id < 0)
+    {
+      id = static_cast<PointId>(mesh.Points.size());
+      mesh.Points.push_back(image.Origin + image.Direction * frame.Position(ids[v]));
+    }
+    tet[v] = id;
+  }
+  const auto& p = mesh.Points;
+  if (SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) < 0.0)
+  {
+    std::swap(tet[2], tet[3]);
+  }
+  mesh.Tets.push_back(tet);
+  mesh.Labels.push_back(label);
+}
+
 // The kept slots as tets, serially and in slot order, so the numbering is the same for any
 // thread count; each tet positively oriented.
 void AssembleKeptSlots(const LabelImage& image, const LatticeFrame& frame,
@@ -295,24 +320,7 @@ void AssembleKeptSlots(const LabelImage& image, const LatticeFrame& frame,
     }
     std::array<std::int64_t, 4> ids;
     frame.SlotTet(slot / 12, int(slot % 12) / 4, int(slot % 4), ids);
-    Tet tet;
-    for (int v = 0; v < 4; ++v)
-    {
-      PointId& id = pointOf[ids[v]];
-      if (id < 0)
-      {
-        id = static_cast<PointId>(mesh.Points.size());
-        mesh.Points.push_back(image.Origin + image.Direction * frame.Position(ids[v]));
-      }
-      tet[v] = id;
-    }
-    const auto& p = mesh.Points;
-    if (SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) < 0.0)
-    {
-      std::swap(tet[2], tet[3]);
-    }
-    mesh.Tets.push_back(tet);
-    mesh.Labels.push_back(slotLabel[slot]);
+    AppendTet(image, frame, ids, slotLabel[slot], pointOf, mesh);
   }
 }
 } // namespace
@@ -360,6 +368,10 @@ bool AddBackgroundRing(const LabelImage& image, TetMesh& lattice)
   LatticeFrame frame;
   if (!MakeFrame(image, h, frame))
     return false;
+  // One cube more on every side: a lattice tet may have a vertex on its frame's boundary.
+  frame.CornerOrigin -= Eigen::Vector3d::Constant(h);
+  for (std::int64_t& cubes : frame.Cubes)
+    cubes += 2;
   const Eigen::Matrix3d toFrame = image.Direction.inverse();
   std::vector<std::int64_t> idOfPoint(lattice.Points.size());
   std::vector<PointId> pointOf(frame.CornerCount() + frame.CubeCount(), -1);
@@ -386,22 +398,7 @@ bool AddBackgroundRing(const LabelImage& image, TetMesh& lattice)
     if (present[slot] || !frame.SlotTet(slot / 12, int(slot % 12) / 4, int(slot % 4), ids) ||
       std::none_of(ids.begin(), ids.end(), [&](std::int64_t id) { return pointOf[id] >= 0 && pointOf[id] < PointId(idOfPoint.size()); }))
       continue;
-    Tet tet;
-    for (int v = 0; v < 4; ++v)
-    {
-      PointId& id = pointOf[ids[v]];
-      if (id < 0)
-      {
-        id = static_cast<PointId>(lattice.Points.size());
-        lattice.Points.push_back(image.Origin + image.Direction * frame.Position(ids[v]));
-      }
-      tet[v] = id;
-    }
-    const auto& p = lattice.Points;
-    if (SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) < 0.0)
-      std::swap(tet[2], tet[3]);
-    lattice.Tets.push_back(tet);
-    lattice.Labels.push_back(background);
+    AppendTet(image, frame, ids, background, pointOf, lattice);
   }
   return true;
 }

@@ -1,4 +1,5 @@
 #include "cbc3d/BCCLattice.h"
+#include "cbc3d/MeshFaces.h"
 #include "cbc3d/TetGeometry.h"
 #include "cbc3d/TetTopology.h"
 
@@ -203,4 +204,56 @@ TEST(BCCLattice, DefaultEdgeIsEightFinestSpacings)
   cbc3d::LabelImage image;
   image.Spacing = Eigen::Vector3d(0.859, 0.859, 2.5);
   EXPECT_DOUBLE_EQ(cbc3d::DefaultLatticeEdgeLength(image), 8 * 0.859);
+}
+
+// The ring round a lattice: every lattice tet sharing a vertex with one of the lattice's, as
+// background, so that no vertex of the lattice stays on the mesh boundary; the lattice's own
+// tets and points come first, unchanged. A mesh that is not this image's lattice is refused.
+TEST(BCCLattice, BackgroundRingClosesEveryLatticeVertexsStar)
+{
+  const cbc3d::LabelImage image = Ball(24, 7.0, 1, Eigen::Vector3d(1.0, 0.8, 1.2),
+    Eigen::Matrix3d(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ())), Eigen::Vector3d(-3.0, 2.0, 5.0));
+  const cbc3d::TetMesh lattice = Lattice(image, 3.0);
+  cbc3d::TetMesh ringed = lattice;
+  ASSERT_TRUE(cbc3d::AddBackgroundRing(image, ringed));
+  ASSERT_GT(ringed.Tets.size(), lattice.Tets.size());
+  for (std::size_t t = 0; t < lattice.Tets.size(); ++t)
+    ASSERT_EQ(ringed.Tets[t], lattice.Tets[t]);
+  for (std::size_t p = 0; p < lattice.Points.size(); ++p)
+    ASSERT_EQ(ringed.Points[p], lattice.Points[p]);
+  for (std::size_t t = lattice.Tets.size(); t < ringed.Tets.size(); ++t)
+  {
+    const auto& tet = ringed.Tets[t];
+    EXPECT_EQ(ringed.Labels[t], 0);
+    EXPECT_GT(cbc3d::SignedVolume(ringed.Points[tet[0]], ringed.Points[tet[1]], ringed.Points[tet[2]],
+                ringed.Points[tet[3]]), 0.0);
+    EXPECT_TRUE(std::any_of(tet.begin(), tet.end(), [&](cbc3d::PointId v) { return v < cbc3d::PointId(lattice.Points.size()); }))
+      << "tet " << t << " shares no vertex with the lattice";
+  }
+  // Conforming (a face in at most two tets), and no lattice vertex on a boundary face.
+  const auto across = cbc3d::FaceNeighbours(ringed.Tets, ringed.Points.size());
+  std::map<std::array<cbc3d::PointId, 3>, int> faces;
+  for (std::size_t t = 0; t < ringed.Tets.size(); ++t)
+    for (int f = 0; f < 4; ++f)
+    {
+      std::array<cbc3d::PointId, 3> face;
+      for (int v = 0, n = 0; v < 4; ++v)
+        if (v != f)
+          face[n++] = ringed.Tets[t][v];
+      std::sort(face.begin(), face.end());
+      ASSERT_LE(++faces[face], 2);
+      if (across[t][f] < 0)
+        for (const cbc3d::PointId v : face)
+          ASSERT_GE(v, cbc3d::PointId(lattice.Points.size())) << "a lattice vertex on the boundary, tet " << t;
+    }
+  // Not this image's lattice: a point moved off the lattice, or another lattice size's frame.
+  cbc3d::TetMesh moved = lattice;
+  moved.Points[0] += Eigen::Vector3d(0.3, 0.0, 0.0);
+  EXPECT_FALSE(cbc3d::AddBackgroundRing(image, moved));
+  EXPECT_EQ(moved.Tets.size(), lattice.Tets.size());
+  cbc3d::TetMesh other = Lattice(image, 3.0);
+  cbc3d::LabelImage shifted = image;
+  shifted.Origin += Eigen::Vector3d(0.5, 0.0, 0.0);
+  EXPECT_FALSE(cbc3d::AddBackgroundRing(shifted, other));
+  EXPECT_EQ(other.Tets.size(), lattice.Tets.size());
 }

@@ -292,6 +292,25 @@ std::vector<std::int32_t> FloodEveryVoxel(const cbc3d::LabelImage& image, std::v
   return component;
 }
 
+// Random blobs of the labels in `pick` (0 and 9 the background) in a stored box of a larger
+// image: runs along x that go on with probability 1 - 1 / change, or take the label below.
+cbc3d::LabelImage RandomBlobs(std::mt19937& random, int change, const std::array<std::int32_t, 5>& pick)
+{
+  cbc3d::LabelImage image;
+  image.Dimensions = { 24, 20, 18 };
+  image.StoredLower = { 2, 1, 3 };
+  image.StoredSize = { 19, 16, 12 };
+  image.BackgroundLabels = { 0, 9 };
+  image.Labels.resize(19 * 16 * 12);
+  for (std::size_t v = 0; v < image.Labels.size(); ++v)
+  {
+    const bool keep = v % 19 != 0 && int(random() % change) != 0;
+    const std::int32_t fresh = pick[random() % 5];
+    image.Labels[v] = keep ? image.Labels[v - 1] : (v >= 19 * 16 && random() % 2 ? image.Labels[v - 19 * 16] : fresh);
+  }
+  return image;
+}
+
 TEST(TissueComponents, RunsJoinAsAFloodFillOverVoxels)
 {
   // Random blobs of three tissues and two background labels in a stored box, with and without
@@ -299,19 +318,7 @@ TEST(TissueComponents, RunsJoinAsAFloodFillOverVoxels)
   std::mt19937 random(11);
   for (int trial = 0; trial < 40; ++trial)
   {
-    cbc3d::LabelImage image;
-    image.Dimensions = { 24, 20, 18 };
-    image.StoredLower = { 2, 1, 3 };
-    image.StoredSize = { 19, 16, 12 };
-    image.BackgroundLabels = { 0, 9 };
-    image.Labels.resize(19 * 16 * 12);
-    const int change = 2 + trial % 5; // smaller: more, thinner pieces
-    for (std::size_t v = 0; v < image.Labels.size(); ++v)
-    {
-      const bool keep = v % 19 != 0 && int(random() % change) != 0;
-      const std::int32_t fresh = std::array<std::int32_t, 5>{ 0, 9, 1, 2, 3 }[random() % 5];
-      image.Labels[v] = keep ? image.Labels[v - 1] : (v >= 19 * 16 && random() % 2 ? image.Labels[v - 19 * 16] : fresh);
-    }
+    cbc3d::LabelImage image = RandomBlobs(random, 2 + trial % 5, { 0, 9, 1, 2, 3 });
     std::vector<std::int64_t> sizes;
     const std::vector<std::int32_t> expected = FloodEveryVoxel(image, sizes);
     cbc3d::LabelImage indexed = image;
@@ -339,19 +346,7 @@ TEST(TissueComponents, BackgroundRunsJoinAsAFloodFillOverVoxels)
   std::mt19937 random(12);
   for (int trial = 0; trial < 40; ++trial)
   {
-    cbc3d::LabelImage image;
-    image.Dimensions = { 24, 20, 18 };
-    image.StoredLower = { 2, 1, 3 };
-    image.StoredSize = { 19, 16, 12 };
-    image.BackgroundLabels = { 0, 9 };
-    image.Labels.resize(19 * 16 * 12);
-    const int change = 2 + trial % 5;
-    for (std::size_t v = 0; v < image.Labels.size(); ++v)
-    {
-      const bool keep = v % 19 != 0 && int(random() % change) != 0;
-      const std::int32_t fresh = std::array<std::int32_t, 5>{ 0, 9, 1, 1, 2 }[random() % 5];
-      image.Labels[v] = keep ? image.Labels[v - 1] : (v >= 19 * 16 && random() % 2 ? image.Labels[v - 19 * 16] : fresh);
-    }
+    cbc3d::LabelImage image = RandomBlobs(random, 2 + trial % 5, { 0, 9, 1, 1, 2 });
     std::array<int, 3> lower = { 1 << 20, 1 << 20, 1 << 20 }, upper = { -1, -1, -1 };
     for (std::int64_t v = 0; v < std::int64_t(image.Labels.size()); ++v)
       if (image.IsTissue(image.Labels[v]))
