@@ -19,8 +19,10 @@
  * shorter than MinimumEdgeLength. Every 6-connected tissue component of at least MinimumComponentVoxels
  * voxels keeps at least one tet of its tissue. Then (SoundLabels) tets are relabelled so that no
  * tet hangs on an edge or a vertex, every tissue surface and interface is a 2-manifold, and no
- * tissue or background piece stands for nothing in the image. Tets labelled background are
- * dropped.
+ * tissue or background piece stands for nothing in the image, nor does any cavity of the image
+ * open to the outside. For that, when the input is this image's BCC lattice, refinement first adds
+ * the lattice tets around it as background (a ring, one tet deep), so that a sheet of tissue one
+ * tet thick can be thickened rather than punched. Tets labelled background are dropped.
  *
  * Output: the refined mesh, conforming, every tet positively oriented; cell data `Label`
  * (vtkIntArray) and `RefinementLevel` (vtkUnsignedCharArray: 0 for lattice tets, +1 per red

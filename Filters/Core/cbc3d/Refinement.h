@@ -31,7 +31,8 @@ struct RefinementParams
   /// longest edge of the mesh to refine (3 mm for an 8 mm BCC lattice); negative = no such bound.
   double BoundaryDistance = 0.0;
   /// Relabel tets at the end so that the mesh is a sound FE model (no hinge, manifold tissue
-  /// surfaces, no piece the image lacks: see SoundLabels.h); false leaves the majority labels.
+  /// surfaces, no piece the image lacks, no cavity opened: see SoundLabels.h, and the ring of
+  /// background tets, AddBackgroundRing, added first); false leaves the majority labels.
   bool SoundLabels = true;
   /// OpenMP threads; 0 = all cores.
   int NumberOfThreads = 0;
