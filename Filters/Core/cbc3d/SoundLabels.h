@@ -28,7 +28,9 @@ struct SoundLabelsResult
 /// tissue or of the background stands for a 6-connected component of the image of at least
 /// `minimumVoxels` voxels, or a smaller one (a speck) where the piece lies against another
 /// tissue rather than afloat in the background (other pieces: islands, cavities, the cut-off
-/// ends of a pinch, are given to their neighbours: see StrayComponents.h). Relabelling is by
+/// ends of a pinch, are given to their neighbours: see StrayComponents.h), and no repair joins
+/// background parts that stand for components the image keeps apart (a cavity and the outside:
+/// see BackgroundRegionOfTets). Relabelling is by
 /// voxel votes (`counts`); `across` is FaceNeighbours(tets); tets in `pinned` (tet -> label:
 /// the tets that stand for a component refinement could not reach) keep their label unless
 /// nothing else works. Returns what it did.
