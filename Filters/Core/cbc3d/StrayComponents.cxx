@@ -68,10 +68,11 @@ std::vector<char> KeptPieces(DisjointSets& pieces, const VoxelOwners& voxelOwner
   };
   // Counts are whole numbers, and the choice below does not depend on the order of the pieces.
   regions.Tissues->ForEachVoxel([&](std::int64_t v, std::int32_t component) { hold(component, voxelOwner[v]); });
-  regions.Gaps.ForEachVoxel([&](std::int64_t v, std::int32_t gap) {
-    if (regions.RegionOfGap[gap] >= 0)
-      hold(regions.RegionOfGap[gap], voxelOwner[v]);
-  });
+  // Only the kept cavities' runs: the outside's, most of the background, count for nothing.
+  for (const RunComponents::Run& run : regions.Gaps.Runs)
+    if (regions.RegionOfGap[run.Component] >= 0)
+      for (std::int64_t v = run.First; v <= run.Last; ++v)
+        hold(regions.RegionOfGap[run.Component], voxelOwner[v]);
   flush();
   std::vector<char> kept(classes.size() + 1, 0);
   kept[pieces.Find(outside)] = 1;
