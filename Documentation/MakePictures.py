@@ -12,19 +12,8 @@ LoadPlugin(plugin, remote=False, ns=globals())
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.dirname(here)
 shared = os.path.join(root, "..", "shared", "data")
-
-
-def white_view(size):
-    """The render view, sized, on a white background without axes."""
-    view = GetActiveViewOrCreate("RenderView")
-    view.ViewSize = size
-    view.OrientationAxesVisibility = 0
-    view.Background = [1, 1, 1]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
-    return view
+sys.path.insert(0, here)
+from picture_views import white_view  # noqa: E402
 
 
 def picture(image_path, edge, out_name, background=None, view_up=(0, 0, 1), direction=(1, -1, 0.6),

@@ -16,6 +16,8 @@ from paraview.simple import *  # noqa: F401,F403
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(here, "..", "Testing", "Python"))
 from cbc3d_testing import write_nifti  # noqa: E402
+sys.path.insert(0, here)
+from picture_views import white_view  # noqa: E402
 
 clis = sys.argv[1:3]
 work = tempfile.mkdtemp()
@@ -25,14 +27,7 @@ shell = ((d > 25) & (d <= 27)).astype(np.int16)
 image = os.path.join(work, "shell.nii")
 write_nifti(image, shell.shape, shell.transpose(2, 1, 0).ravel().tolist(), dtype="int16", pixdim=(1.0, 3.9, 3.9, 3.9))
 
-view = GetActiveViewOrCreate("RenderView")
-view.ViewSize = [1400, 700]
-view.OrientationAxesVisibility = 0
-view.Background = [1, 1, 1]
-try:
-    view.UseColorPaletteForBackground = 0
-except AttributeError:
-    pass
+view = white_view([1400, 700])
 centre = [125.0, 125.0, 125.0]  # mm: the shell's centre (64 voxels of 3.9 mm, origin 0)
 for n, cli in enumerate(clis):  # the new mesh on the right, the old one 300 mm left of it
     mesh_path = os.path.join(work, "shell%d.vtu" % n)
