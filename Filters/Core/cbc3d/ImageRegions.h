@@ -1,6 +1,7 @@
 #ifndef cbc3d_ImageRegions_h
 #define cbc3d_ImageRegions_h
 
+#include "cbc3d/TetMesh.h"
 #include "cbc3d/TetVoxelSampler.h"
 #include "cbc3d/TissueComponents.h"
 
@@ -35,12 +36,16 @@ ImageRegions FindImageRegions(const LabelImage& image, const TissueComponents& t
 
 /// Per tet, the background component of the image that most of its background voxels belong to
 /// (`voxelOwner`: the tet owning each voxel centre, or -1): a kept cavity's region,
-/// OutsideRegion, or NoRegion (no background voxel, or those of a cavity too small to keep).
-/// Empty where the image has no cavity to keep: then every background tet is the outside.
+/// OutsideRegion, or NoRegion (no background at all, or a cavity too small to keep). A tet that
+/// owns no background voxel centre of the tissues' box (a tet smaller than a voxel, or one
+/// beyond the box) is judged by the voxels under five points of it instead: its centroid and
+/// the points halfway from there to each vertex. Empty where the image has no cavity to keep:
+/// then every background tet is the outside.
 constexpr std::int32_t NoRegion = -1;
 constexpr std::int32_t OutsideRegion = -2;
-std::vector<std::int32_t> BackgroundRegionOfTets(
-  const ImageRegions& regions, const VoxelOwners& voxelOwner, std::size_t tetCount);
+std::vector<std::int32_t> BackgroundRegionOfTets(const LabelImage& image, const ImageRegions& regions,
+  const VoxelOwners& voxelOwner, const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
+  int numberOfThreads);
 } // namespace cbc3d
 
 #endif

@@ -39,7 +39,7 @@ SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponent
   };
   // The repair must not open a cavity of the image: it reads which cavity each tet stands for.
   const ImageRegions regions = FindImageRegions(image, components, minimumVoxels, background);
-  const std::vector<std::int32_t> regionOfTet = BackgroundRegionOfTets(regions, voxelOwner, tets.size());
+  const std::vector<std::int32_t> regionOfTet = BackgroundRegionOfTets(image, regions, voxelOwner, points, tets, numberOfThreads);
   SoundLabelsResult result;
   ManifoldRepairResult repair = RepairManifoldLabels(
     points, tets, across, background, votes, classes, {}, numberOfThreads, regionOfTet);

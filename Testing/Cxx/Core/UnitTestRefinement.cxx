@@ -1,4 +1,5 @@
 #include "cbc3d/BCCLattice.h"
+#include "cbc3d/ImageRegions.h"
 #include "cbc3d/MeshTopology.h"
 #include "cbc3d/Refinement.h"
 #include "cbc3d/StrayComponents.h"
@@ -415,6 +416,46 @@ TEST(StrayComponents, ThePieceOwningMostOfAComponentsVoxelsStays)
   }
 }
 
+// A hollow cube: tets smaller than a voxel own no voxel centre, yet the repair must know which
+// background they stand for. They are judged by the voxels under their points; a tet that owns
+// background voxels is judged by those, wherever it lies.
+TEST(ImageRegions, TetsWithoutVoxelCentresTakeTheRegionOfTheVoxelsUnderThem)
+{
+  cbc3d::LabelImage image = Cube(12, 0);
+  for (int k = 2; k <= 9; ++k)
+    for (int j = 2; j <= 9; ++j)
+      for (int i = 2; i <= 9; ++i)
+        image.Labels[image.VoxelIndex(i, j, k)] = (i < 4 || i > 7 || j < 4 || j > 7 || k < 4 || k > 7) ? 1 : 0;
+  const cbc3d::TissueComponents components = cbc3d::FindTissueComponents(image);
+  const cbc3d::ImageRegions regions = cbc3d::FindImageRegions(image, components, 8, 0);
+  ASSERT_TRUE(regions.HasCavity());
+  const std::int32_t cavity = regions.RegionOfGap[regions.Gaps.ComponentOf(image.VoxelIndex(5, 5, 5))];
+  ASSERT_GE(cavity, 0);
+  // A tet of edge 0.4 voxel at each place, clear of every voxel centre.
+  std::vector<Eigen::Vector3d> points;
+  std::vector<cbc3d::Tet> tets;
+  for (const Eigen::Vector3d corner : { Eigen::Vector3d(5.3, 5.3, 5.3), Eigen::Vector3d(0.3, 0.3, 0.3),
+         Eigen::Vector3d(2.3, 5.3, 5.3), Eigen::Vector3d(10.3, 10.3, 10.3) })
+  {
+    const cbc3d::PointId first = static_cast<cbc3d::PointId>(points.size());
+    points.insert(points.end(), { corner, corner + Eigen::Vector3d(0.4, 0, 0), corner + Eigen::Vector3d(0, 0.4, 0),
+                                  corner + Eigen::Vector3d(0, 0, 0.4) });
+    tets.push_back({ first, first + 1, first + 2, first + 3 });
+  }
+  // The last tet, outside the shell, owns a voxel of the cavity (and one of the outside).
+  cbc3d::VoxelOwners owners;
+  owners.assign(image.Labels.size(), -1);
+  owners[image.VoxelIndex(6, 6, 6)] = 3;
+  owners[image.VoxelIndex(6, 6, 7)] = 3;
+  owners[image.VoxelIndex(11, 11, 11)] = 3;
+  const std::vector<std::int32_t> region = cbc3d::BackgroundRegionOfTets(image, regions, owners, points, tets, 2);
+  ASSERT_EQ(region.size(), tets.size());
+  EXPECT_EQ(region[0], cavity) << "inside the cavity";
+  EXPECT_EQ(region[1], cbc3d::OutsideRegion) << "beyond the tissues' box";
+  EXPECT_EQ(region[2], cbc3d::NoRegion) << "inside the shell's wall";
+  EXPECT_EQ(region[3], cavity) << "owns two cavity voxels and one of the outside";
+}
+
 namespace
 {
 // Random blobs of three tissues and background: voxel noise, then each voxel takes its 3x3x3
@@ -531,8 +572,20 @@ TEST(Refinement, ThinShellKeepsItsCavity)
         const double d = (Eigen::Vector3d(i, j, k) - Eigen::Vector3d::Constant(31.5)).norm();
         image.Labels[image.VoxelIndex(i, j, k)] = d > 25.0 && d <= 27.0;
       }
-  for (const double edge : { 8.0, 4.1, 3.1, 2.05, 1.5 })
+  // In voxels, and as the CLI reads the topology phantom (3.9 mm voxels, NIfTI's flipped x
+  // and y), where an 8 mm lattice had three holes: its tets smaller than a voxel held no voxel
+  // centre, so the repair could not tell the cavity's background from the outside's.
+  struct Frame
   {
+    double Spacing;
+    Eigen::Vector3d Axes;
+  };
+  for (const Frame frame : { Frame{ 1.0, Eigen::Vector3d(1, 1, 1) }, Frame{ 3.9, Eigen::Vector3d(-1, -1, 1) } })
+  for (const double voxels : { 8.0, 4.1, 3.1, 2.05, 1.5 })
+  {
+    const double edge = voxels * frame.Spacing;
+    image.Spacing.setConstant(frame.Spacing);
+    image.Direction = frame.Axes.asDiagonal();
     cbc3d::RefinementParams params;
     cbc3d::TetMesh mesh;
     cbc3d::RefinementResult result;
@@ -540,7 +593,7 @@ TEST(Refinement, ThinShellKeepsItsCavity)
     const cbc3d::MeshTopology topology = cbc3d::MeasureMeshTopology(mesh);
     ExpectSound(mesh, "edge " + std::to_string(edge));
     EXPECT_EQ(topology.Whole.FaceComponents, 1) << "edge " << edge;
-    EXPECT_EQ(topology.Whole.SurfaceEuler, 4) << "edge " << edge << ": the shell's surface, two spheres";
+    EXPECT_EQ(topology.Whole.SurfaceEuler, 4) << "edge " << edge << " mm, voxels of " << frame.Spacing << ": the shell's surface, two spheres";
   }
 }
 
