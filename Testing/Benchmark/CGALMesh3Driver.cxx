@@ -2,13 +2,17 @@
 // CGAL Mesh_3 (Labeled_mesh_domain_3, the CBC3D paper's CGAL settings by default), puts the mesh
 // in the image's world frame, and measures it with vtkCBC3DMeshQuality, the ruler cbc3d uses.
 //   CBC3DCGALMesh3 IMAGE.nii.gz OUT.vtu [--background L] [--deterministic]
-//                  [--facet-size MM] [--facet-distance MM] [--cell-size MM]
+//                  [--facet-size MM] [--facet-distance MM] [--cell-size MM] [--seed-components]
 // --deterministic turns off the time limits of CGAL's perturber and exuder, whose default
 // (the refinement's own time) makes the result depend on the machine's load. The three sizes
 // (defaults 2, 2 and 2.5 mm, the paper's) let benchmark_meshing.py --curves trace CGAL's
 // Hausdorff distance and time against its tet count; facet angle 30 and radius-edge ratio 1.5
 // are shape criteria and stay the paper's. Prints a summary line, then one JSON line for
 // benchmark_meshing.py (the mesh's figures, the sizes used, and each tissue's figures).
+// --seed-components starts CGAL's refinement from a point on the surface of every connected
+// component of the image (CGAL's initialize_triangulation_from_labeled_image) instead of
+// make_mesh_3's random rays from the box's centre, which see nothing when the centre and the
+// ends of every ray are background (a hollow shell round a cavity: no mesh at all).
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DMeshQuality.h"
 #include "vtkCBC3DNIfTIReader.h"
@@ -19,7 +23,9 @@
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_criteria_3.h>
 #include <CGAL/Mesh_triangulation_3.h>
+#include <CGAL/Mesh_3/initialize_triangulation_from_labeled_image.h>
 #include <CGAL/make_mesh_3.h>
+#include <CGAL/refine_mesh_3.h>
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -40,8 +46,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <iostream>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -54,12 +62,13 @@ using Criteria = CGAL::Mesh_criteria_3<Triangulation>;
 namespace
 {
 const char* const Usage = "usage: CBC3DCGALMesh3 IMAGE.nii.gz OUT.vtu [--background L] [--deterministic] "
-                          "[--facet-size MM] [--facet-distance MM] [--cell-size MM]\n";
+                          "[--facet-size MM] [--facet-distance MM] [--cell-size MM] [--seed-components]\n";
 
 struct Options
 {
   int Background = 0;
   bool Deterministic = false;
+  bool SeedComponents = false;
   // The paper's CGAL size criteria, in mm.
   double FacetSize = 2.0;
   double FacetDistance = 2.0;
@@ -98,6 +107,11 @@ bool ParseOptions(int argc, char* argv[], Options& options)
     if (std::strcmp(name, "--deterministic") == 0)
     {
       options.Deterministic = true;
+      continue;
+    }
+    if (std::strcmp(name, "--seed-components") == 0)
+    {
+      options.SeedComponents = true;
       continue;
     }
     double* size = std::strcmp(name, "--facet-size") == 0 ? &options.FacetSize
@@ -181,9 +195,25 @@ int main(int argc, char* argv[])
   Criteria criteria(p::facet_angle = 30, p::facet_size = options.FacetSize, p::facet_distance = options.FacetDistance,
     p::cell_radius_edge_ratio = 1.5, p::cell_size = options.CellSize);
   const auto start = std::chrono::steady_clock::now();
-  Complex complex = deterministic
-    ? CGAL::make_mesh_3<Complex>(domain, criteria, p::perturb(p::time_limit = 0), p::exude(p::time_limit = 0))
-    : CGAL::make_mesh_3<Complex>(domain, criteria);
+  Complex complex;
+  if (options.SeedComponents)
+  {
+    // CGAL reports its search on std::cout, where this program's JSON line goes: silenced.
+    std::ostringstream chatter;
+    std::streambuf* const out = std::cout.rdbuf(chatter.rdbuf());
+    ::initialize_triangulation_from_labeled_image(complex, domain, cgalImage, criteria, std::uint16_t());
+    std::cout.rdbuf(out);
+    if (deterministic)
+      CGAL::refine_mesh_3(complex, domain, criteria, p::perturb(p::time_limit = 0), p::exude(p::time_limit = 0));
+    else
+      CGAL::refine_mesh_3(complex, domain, criteria);
+  }
+  else
+  {
+    complex = deterministic
+      ? CGAL::make_mesh_3<Complex>(domain, criteria, p::perturb(p::time_limit = 0), p::exude(p::time_limit = 0))
+      : CGAL::make_mesh_3<Complex>(domain, criteria);
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   // Into the image's world frame: CGAL's point is spacing .* index, as vtkImageData's before
