@@ -1,5 +1,7 @@
 #include "vtkCBC3DNIfTIReader.h"
 
+#include "vtkCBC3DNIfTIGzipVoxels.h"
+
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
@@ -13,6 +15,7 @@
 #include <vtkNIFTIImageReader.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
+#include <vtkSmartPointer.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <vtk_zlib.h>
@@ -445,6 +448,39 @@ int vtkCBC3DNIfTIReader::RequestInformation(
   return 1;
 }
 
+bool vtkCBC3DNIfTIReader::ReadVoxels(vtkImageData* output)
+{
+  this->InflatedAtOnce = false;
+  int extent[6];
+  this->Reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  const vtkIdType voxels = vtkIdType(extent[1] - extent[0] + 1) * (extent[3] - extent[2] + 1) * (extent[5] - extent[4] + 1);
+  if (this->Reader->GetNumberOfScalarComponents() == 1)
+  {
+    if (vtkSmartPointer<vtkDataArray> inflated =
+          InflateNIfTIVoxels(this->FileName, this->Reader->GetDataScalarType(), voxels))
+    {
+      inflated->SetName("NIFTI"); // vtkNIFTIImageReader's name for them
+      output->SetExtent(extent);
+      output->GetPointData()->SetScalars(inflated);
+      this->InflatedAtOnce = true;
+      this->UpdateProgress(1.0);
+      return true;
+    }
+  }
+  if (!this->RunReader(true))
+  {
+    return false;
+  }
+  vtkImageData* image = this->Reader->GetOutput();
+  if (!image->GetPointData()->GetScalars())
+  {
+    vtkErrorMacro(<< "Cannot read NIfTI file " << this->FileName << ": no voxel values read");
+    return false;
+  }
+  output->ShallowCopy(image);
+  return true;
+}
+
 int vtkCBC3DNIfTIReader::RequestData(
   vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
 {
@@ -454,23 +490,14 @@ int vtkCBC3DNIfTIReader::RequestData(
   {
     return 0; // RequestInformation failed and said why
   }
-  if (!this->RunReader(true))
+  if (!this->ReadVoxels(output))
   {
     return 0;
   }
-
-  vtkImageData* image = this->Reader->GetOutput();
-  vtkDataArray* scalars = image->GetPointData()->GetScalars();
-  if (!scalars)
-  {
-    vtkErrorMacro(<< "Cannot read NIfTI file " << this->FileName << ": no voxel values read");
-    return 0;
-  }
-  output->ShallowCopy(image);
   output->SetSpacing(this->Spacing);
   output->SetOrigin(this->Origin);
   output->SetDirectionMatrix(this->Direction);
-  scalars = output->GetPointData()->GetScalars();
+  vtkDataArray* scalars = output->GetPointData()->GetScalars();
   if (!scalars->GetName() || !*scalars->GetName())
   {
     scalars->SetName("Labels");
@@ -485,6 +512,7 @@ void vtkCBC3DNIfTIReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FileName: " << (this->FileName ? this->FileName : "(none)") << "\n";
   os << indent << "FrameSource: " << (this->FrameSource.empty() ? "(none)" : this->FrameSource)
      << "\n";
+  os << indent << "InflatedAtOnce: " << this->InflatedAtOnce << "\n";
   os << indent << "Origin: " << this->Origin[0] << " " << this->Origin[1] << " "
      << this->Origin[2] << "\n";
   os << indent << "Spacing: " << this->Spacing[0] << " " << this->Spacing[1] << " "

@@ -72,6 +72,13 @@ public:
    */
   const char* GetFrameSource() const { return this->FrameSource.c_str(); }
 
+  /**
+   * Whether the last image's voxels were inflated in one piece (a single-file NIfTI-1
+   * .nii.gz of one volume, stored with qfac +1; libdeflate, an order of magnitude faster than
+   * zlib's streaming there) rather than read by vtkNIFTIImageReader. The voxels are the same.
+   */
+  vtkGetMacro(InflatedAtOnce, bool);
+
 protected:
   vtkCBC3DNIfTIReader();
   ~vtkCBC3DNIfTIReader() override;
@@ -83,6 +90,7 @@ protected:
 
   char* FileName = nullptr;
   std::string FrameSource;
+  bool InflatedAtOnce = false;
   double Origin[3] = { 0.0, 0.0, 0.0 };
   double Spacing[3] = { 1.0, 1.0, 1.0 };
   double Direction[9] = { 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0 };
@@ -95,6 +103,9 @@ private:
   // Run the inner reader's pass (information or data), turning its errors into one line of
   // ours that names the file; warnings are passed on. False on failure.
   bool RunReader(bool data);
+  // The voxels into `output`: a single-file .nii.gz inflated at once (InflateNIfTIVoxels),
+  // anything else by vtkNIFTIImageReader.
+  bool ReadVoxels(vtkImageData* output);
   bool ComputeFrame();
   // False, with an error, when the header gives an axis no voxels, or claims more voxel bytes
   // than the file could hold even compressed: the inner reader would read into an empty image,

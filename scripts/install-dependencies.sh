@@ -15,8 +15,9 @@ packages=(
   # the sanitizer job (scripts/sanitizer-job.sh): clang with its ASan, UBSan and libFuzzer
   # runtimes, clang's OpenMP, and llvm-symbolizer for readable reports
   clang libclang-rt-14-dev libomp-14-dev llvm
-  # core dependencies (serial HDF5 for the .xdmf's .h5; libnetcdf-dev, for .exo, is below)
-  libeigen3-dev libhdf5-dev
+  # core dependencies (serial HDF5 for the .xdmf's .h5; libnetcdf-dev, for .exo, is below;
+  # libdeflate for the NIfTI reader's .nii.gz)
+  libeigen3-dev libhdf5-dev libdeflate-dev
   # packages ParaView's CMake config requires at configure time
   qtbase5-dev qttools5-dev libqt5svg5-dev libqt5x11extras5-dev
   qtxmlpatterns5-dev-tools libqt5opengl5-dev libutfcpp-dev

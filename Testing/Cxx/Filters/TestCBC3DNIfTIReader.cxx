@@ -348,6 +348,66 @@ void CheckCase(Checker& check, const std::string& name, const std::string& path,
             << ", worst position error " << worst << " mm\n";
 }
 
+// The file in big-endian order: every header field MakeNifti sets, and the int16 voxels.
+std::vector<unsigned char> BigEndian(std::vector<unsigned char> bytes)
+{
+  auto swap = [&](size_t offset, size_t size, size_t count) {
+    for (size_t i = 0; i < count; ++i)
+    {
+      std::reverse(bytes.begin() + offset + i * size, bytes.begin() + offset + (i + 1) * size);
+    }
+  };
+  swap(0, 4, 1);   // sizeof_hdr
+  swap(40, 2, 8);  // dim
+  swap(70, 2, 2);  // datatype, bitpix
+  swap(76, 4, 8);  // pixdim
+  swap(108, 4, 2); // vox_offset, scl_slope
+  swap(252, 2, 2); // qform_code, sform_code
+  swap(256, 4, 18); // quatern_b .. srow_z
+  swap(352, 2, (bytes.size() - 352) / 2);
+  return bytes;
+}
+
+// The same voxels read from a .nii (vtkNIFTIImageReader) and a .nii.gz: the same image.
+void CheckInflatedAtOnce(Checker& check, const std::string& name, const std::string& dir,
+  const std::vector<unsigned char>& nifti, const std::vector<unsigned char>& gzipped, bool atOnce)
+{
+  const std::string plain = dir + "/" + name + ".nii", packed = dir + "/" + name + ".nii.gz";
+  check.Check(WriteFile(plain, nifti) && WriteFile(packed, gzipped), name + ": write");
+  vtkNew<MessageObserver> observer;
+  auto a = MakeReader(observer), b = MakeReader(observer);
+  a->SetFileName(plain.c_str());
+  b->SetFileName(packed.c_str());
+  a->Update();
+  b->Update();
+  check.Check(observer->Errors.empty(), name + ": no error");
+  check.Check(!a->GetInflatedAtOnce() && b->GetInflatedAtOnce() == atOnce,
+    name + (atOnce ? ": the .nii.gz inflated at once" : ": the .nii.gz left to VTK's reader"));
+  vtkImageData* x = a->GetOutput();
+  vtkImageData* y = b->GetOutput();
+  vtkDataArray* u = x->GetPointData()->GetScalars();
+  vtkDataArray* v = y->GetPointData()->GetScalars();
+  bool same = u && v && u->GetDataType() == v->GetDataType() && u->GetNumberOfTuples() == v->GetNumberOfTuples() &&
+    u->GetNumberOfComponents() == v->GetNumberOfComponents() && std::string(u->GetName()) == v->GetName();
+  for (int e = 0; same && e < 6; ++e)
+  {
+    same = x->GetExtent()[e] == y->GetExtent()[e];
+  }
+  for (int e = 0; same && e < 3; ++e)
+  {
+    same = x->GetOrigin()[e] == y->GetOrigin()[e] && x->GetSpacing()[e] == y->GetSpacing()[e];
+  }
+  for (int e = 0; same && e < 9; ++e)
+  {
+    same = x->GetDirectionMatrix()->GetData()[e] == y->GetDirectionMatrix()->GetData()[e];
+  }
+  for (vtkIdType t = 0; same && t < u->GetNumberOfTuples(); ++t)
+  {
+    same = u->GetTuple1(t) == v->GetTuple1(t);
+  }
+  check.Check(same, name + ": the same frame, type, name and voxels as the .nii");
+}
+
 // Reading `path` must fail with an error that names the file, without crashing.
 void CheckFailure(Checker& check, const std::string& name, const char* path)
 {
@@ -612,6 +672,28 @@ int TestCBC3DNIfTIReader(int, char*[])
     check.Check(reader->GetOutput()->GetNumberOfPoints() == 0, "(k) sizeof_hdr 0: empty output");
   }
 
+  // (l) A .nii.gz is inflated at once where it is one volume stored with qfac +1, in either
+  // byte order and in one gzip member or several, and gives what the .nii gives; slices stored
+  // in reverse (qfac -1) are left to VTK's reader.
+  {
+    Header l;
+    l.Dim = { { 9, 7, 5 } };
+    l.PixDim = { { 1.0f, 0.5f, 0.75f, 2.0f } };
+    l.QFormCode = 1;
+    l.QuaternB = 0.25f;
+    l.QOffset[0] = -3.0f;
+    const std::vector<unsigned char> nifti = MakeNifti(l);
+    CheckInflatedAtOnce(check, "(l) little-endian", dir, nifti, Gzip(nifti), true);
+    CheckInflatedAtOnce(check, "(l) big-endian", dir, BigEndian(nifti), Gzip(BigEndian(nifti)), true);
+    std::vector<unsigned char> members = Gzip({ nifti.begin(), nifti.begin() + 500 });
+    const std::vector<unsigned char> rest = Gzip({ nifti.begin() + 500, nifti.end() });
+    members.insert(members.end(), rest.begin(), rest.end());
+    CheckInflatedAtOnce(check, "(l) two gzip members", dir, nifti, members, true);
+    l.PixDim[0] = -1.0f;
+    const std::vector<unsigned char> reversed = MakeNifti(l);
+    CheckInflatedAtOnce(check, "(l) qfac -1", dir, reversed, Gzip(reversed), false);
+  }
+
   // PrintSelf.
   {
     vtkNew<vtkCBC3DNIfTIReader> reader;
@@ -619,7 +701,9 @@ int TestCBC3DNIfTIReader(int, char*[])
     reader->Update();
     std::ostringstream os;
     reader->Print(os);
-    check.Check(os.str().find("FrameSource: sform") != std::string::npos, "PrintSelf");
+    check.Check(os.str().find("FrameSource: sform") != std::string::npos &&
+        os.str().find("InflatedAtOnce: 0") != std::string::npos,
+      "PrintSelf");
   }
 
   if (check.Failures)
