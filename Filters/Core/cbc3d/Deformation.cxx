@@ -290,6 +290,7 @@ private:
     {
       return false;
     }
+    const ScopedEigenThreads threads(this->Params.NumberOfThreads);
     this->Solver.compute(this->System);
     for (int chunk = 0; chunk < 20; ++chunk)
     {

@@ -1,5 +1,7 @@
 #include "cbc3d/Parallel.h"
 
+#include <Eigen/Core>
+
 #include <omp.h>
 
 #include <algorithm>
@@ -15,6 +17,17 @@ namespace cbc3d
 int ThreadCount(int requested)
 {
   return requested > 0 ? std::min(requested, MaximumThreads) : omp_get_max_threads();
+}
+
+ScopedEigenThreads::ScopedEigenThreads(int requested)
+  : Previous(Eigen::nbThreads())
+{
+  Eigen::setNbThreads(ThreadCount(requested));
+}
+
+ScopedEigenThreads::~ScopedEigenThreads()
+{
+  Eigen::setNbThreads(this->Previous);
 }
 
 namespace

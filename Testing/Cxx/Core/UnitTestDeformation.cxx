@@ -1,5 +1,6 @@
 #include "cbc3d/BCCLattice.h"
 #include "cbc3d/Deformation.h"
+#include "cbc3d/Parallel.h"
 #include "cbc3d/LinearElasticity.h"
 #include "cbc3d/Refinement.h"
 #include "cbc3d/SurfacePoints.h"
@@ -376,4 +377,21 @@ TEST(Deformation, KeepVolumesHoldsTheVoxelsVolumeWithoutLosingFidelity)
   for (const auto& tet : kept.Tets)
     ASSERT_TRUE(cbc3d::DihedralAnglesWithin(kept.Points[tet[0]], kept.Points[tet[1]], kept.Points[tet[2]],
       kept.Points[tet[3]], params.MinimumDihedralAngle / cbc3d::RadiansToDegrees * (1.0 - 1e-9)));
+}
+
+// The elastic solve's sparse products thread by Eigen's own count, all cores unless set: a
+// scope sets the asked count and gives the one before back, nested too.
+TEST(Parallel, EigenUsesTheAskedThreadsWhileAScopeLives)
+{
+  const int before = Eigen::nbThreads();
+  {
+    const cbc3d::ScopedEigenThreads one(1);
+    EXPECT_EQ(Eigen::nbThreads(), 1);
+    {
+      const cbc3d::ScopedEigenThreads three(3);
+      EXPECT_EQ(Eigen::nbThreads(), 3);
+    }
+    EXPECT_EQ(Eigen::nbThreads(), 1);
+  }
+  EXPECT_EQ(Eigen::nbThreads(), before);
 }
