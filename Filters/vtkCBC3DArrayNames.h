@@ -39,10 +39,11 @@
  * Topology field data (vtkCBC3DMeshQuality, vtkIdTypeArray): over the whole mesh
  * `FaceComponents`, `VertexComponents`, `HingedParts`, `NonManifoldEdges`,
  * `NonManifoldVertices` (these two: the whole body's plus every tissue's), `SurfaceEuler`,
- * `SolverReady` (0 or 1) and, with an image, `ImageSurfaceEuler`; per tissue in ascending label
- * order `TissueFaceComponents`, `TissueVertexComponents`, `TissueHingedParts`,
- * `TissueNonManifoldEdges`, `TissueNonManifoldVertices`, `TissueSurfaceEuler` and, with an
- * image, `TissueImageSurfaceEuler`.
+ * `SolverReady` (0 or 1) and, with an image, `ImageSurfaceEuler`, `ImagePinchesJoinedEuler`,
+ * `ImagePinchesPartedEuler`; per tissue in ascending label order `TissueFaceComponents`,
+ * `TissueVertexComponents`, `TissueHingedParts`, `TissueNonManifoldEdges`,
+ * `TissueNonManifoldVertices`, `TissueSurfaceEuler` and, with an image,
+ * `TissueImageSurfaceEuler`, `TissueImagePinchesJoinedEuler`, `TissueImagePinchesPartedEuler`.
  */
 #ifndef vtkCBC3DArrayNames_h
 #define vtkCBC3DArrayNames_h
@@ -100,6 +101,8 @@ constexpr const char* NonManifoldVertices = "NonManifoldVertices";
 constexpr const char* SurfaceEuler = "SurfaceEuler";
 constexpr const char* SolverReady = "SolverReady";
 constexpr const char* ImageSurfaceEuler = "ImageSurfaceEuler";
+constexpr const char* ImagePinchesJoinedEuler = "ImagePinchesJoinedEuler";
+constexpr const char* ImagePinchesPartedEuler = "ImagePinchesPartedEuler";
 constexpr const char* TissueFaceComponents = "TissueFaceComponents";
 constexpr const char* TissueVertexComponents = "TissueVertexComponents";
 constexpr const char* TissueHingedParts = "TissueHingedParts";
@@ -107,6 +110,8 @@ constexpr const char* TissueNonManifoldEdges = "TissueNonManifoldEdges";
 constexpr const char* TissueNonManifoldVertices = "TissueNonManifoldVertices";
 constexpr const char* TissueSurfaceEuler = "TissueSurfaceEuler";
 constexpr const char* TissueImageSurfaceEuler = "TissueImageSurfaceEuler";
+constexpr const char* TissueImagePinchesJoinedEuler = "TissueImagePinchesJoinedEuler";
+constexpr const char* TissueImagePinchesPartedEuler = "TissueImagePinchesPartedEuler";
 }
 
 #endif

@@ -29,6 +29,7 @@
 #include <limits>
 #include <set>
 #include <utility>
+#include <map>
 #include <vector>
 
 vtkStandardNewMacro(vtkCBC3DMeshQuality);
@@ -97,6 +98,8 @@ void AddTopologyFields(vtkFieldData* fields, const cbc3d::MeshTopology& topology
   if (image)
   {
     one(names::ImageSurfaceEuler, image->WholeSurfaceEuler);
+    one(names::ImagePinchesJoinedEuler, image->WholePinchesJoinedEuler);
+    one(names::ImagePinchesPartedEuler, image->WholePinchesPartedEuler);
   }
 
   // One column per field of RegionTopology; a tissue the mesh lacks is the empty set's zeros.
@@ -121,13 +124,21 @@ void AddTopologyFields(vtkFieldData* fields, const cbc3d::MeshTopology& topology
   }
   if (image)
   {
-    std::vector<vtkIdType> values;
-    for (const int label : labels)
+    const std::pair<const char*, const std::map<std::int32_t, std::int64_t>*> imageColumns[] = {
+      { names::TissueImageSurfaceEuler, &image->TissueSurfaceEuler },
+      { names::TissueImagePinchesJoinedEuler, &image->TissuePinchesJoinedEuler },
+      { names::TissueImagePinchesPartedEuler, &image->TissuePinchesPartedEuler },
+    };
+    for (const auto& column : imageColumns)
     {
-      const auto found = image->TissueSurfaceEuler.find(label);
-      values.push_back(found == image->TissueSurfaceEuler.end() ? 0 : found->second);
+      std::vector<vtkIdType> values;
+      for (const int label : labels)
+      {
+        const auto found = column.second->find(label);
+        values.push_back(found == column.second->end() ? 0 : found->second);
+      }
+      AddFieldArray<vtkIdTypeArray>(fields, column.first, values);
     }
-    AddFieldArray<vtkIdTypeArray>(fields, names::TissueImageSurfaceEuler, values);
   }
 }
 

@@ -42,10 +42,14 @@
  *   more than one fan), each the whole body's plus the sum over tissues, so that the mesh
  *   counts every defect a solver would meet; `SolverReady` (1 when the body and every tissue
  *   have no hinged part and no non-manifold edge or vertex, else 0); with the image,
- *   `ImageSurfaceEuler` (V - E + F of the voxel-face surface of all tissue voxels);
+ *   `ImageSurfaceEuler` (V - E + F of the voxel-face surface of all tissue voxels), and
+ *   `ImagePinchesJoinedEuler` and `ImagePinchesPartedEuler`: what a manifold surface round the
+ *   same voxels has where every pinch (voxels touching only along an edge or at a corner) is
+ *   joined, or parted; the voxel-face figure is their mean (cbc3d::ImageTopology);
  * - per tissue (the rows above): `TissueFaceComponents`, `TissueVertexComponents`,
  *   `TissueHingedParts`, `TissueNonManifoldEdges`, `TissueNonManifoldVertices`,
- *   `TissueSurfaceEuler` and, with the image, `TissueImageSurfaceEuler` (its voxels'). A tissue
+ *   `TissueSurfaceEuler` and, with the image, `TissueImageSurfaceEuler`,
+ *   `TissueImagePinchesJoinedEuler` and `TissueImagePinchesPartedEuler` (its voxels'). A tissue
  *   absent from the mesh has 0 components and Euler 0 (the empty surface's).
  * Equal mesh and image Euler characteristics per tissue with a solver-ready mesh mean the
  * surfaces have the image's topology (a ball 2, a torus 0, a hollow shell 4).

@@ -77,7 +77,12 @@ void AddTopology(nlohmann::json& out, const TissueFigures& f)
   out["nonmanifold_edges"] = f.NonManifoldEdges;
   out["nonmanifold_vertices"] = f.NonManifoldVertices;
   out["surface_euler"] = f.SurfaceEuler;
-  out["image_surface_euler"] = f.ImageSurfaceEuler ? nlohmann::json(*f.ImageSurfaceEuler) : nlohmann::json(nullptr);
+  auto optional = [](const std::optional<long long>& value) {
+    return value ? nlohmann::json(*value) : nlohmann::json(nullptr);
+  };
+  out["image_surface_euler"] = optional(f.ImageSurfaceEuler);
+  out["image_surface_euler_pinches_joined"] = optional(f.ImagePinchesJoinedEuler);
+  out["image_surface_euler_pinches_parted"] = optional(f.ImagePinchesPartedEuler);
 }
 
 // Reads the topology of the whole mesh (prefix "") or of tissue row i (prefix "Tissue") from
@@ -96,9 +101,16 @@ void ReadTopology(vtkUnstructuredGrid* mesh, const std::string& prefix, vtkIdTyp
       *value = static_cast<long long>(array->GetTuple1(i));
     }
   }
-  if (vtkDataArray* image = Field(mesh, (prefix + names::ImageSurfaceEuler).c_str()))
+  const std::pair<const char*, std::optional<long long>*> images[] = {
+    { names::ImageSurfaceEuler, &f.ImageSurfaceEuler },
+    { names::ImagePinchesJoinedEuler, &f.ImagePinchesJoinedEuler },
+    { names::ImagePinchesPartedEuler, &f.ImagePinchesPartedEuler } };
+  for (const auto& [name, value] : images)
   {
-    f.ImageSurfaceEuler = static_cast<long long>(image->GetTuple1(i));
+    if (vtkDataArray* image = Field(mesh, (prefix + name).c_str()))
+    {
+      *value = static_cast<long long>(image->GetTuple1(i));
+    }
   }
 }
 
@@ -107,10 +119,26 @@ std::string Plural(long long count, const char* one, const char* many)
   return std::to_string(count) + " " + (count == 1 ? one : many);
 }
 
+// The image's figure, and where its voxels pinch, the manifold readings round it.
+std::string ImageEulerText(const TissueFigures& f)
+{
+  if (!f.ImageSurfaceEuler)
+  {
+    return "-";
+  }
+  std::string text = std::to_string(*f.ImageSurfaceEuler);
+  if (f.ImagePinchesJoinedEuler && f.ImagePinchesPartedEuler &&
+    (*f.ImagePinchesJoinedEuler != *f.ImageSurfaceEuler || *f.ImagePinchesPartedEuler != *f.ImageSurfaceEuler))
+  {
+    text += "; manifold " + std::to_string(*f.ImagePinchesJoinedEuler) + " joined, " +
+      std::to_string(*f.ImagePinchesPartedEuler) + " parted";
+  }
+  return text;
+}
+
 std::string EulerText(const TissueFigures& f)
 {
-  return std::to_string(f.SurfaceEuler) +
-    (f.ImageSurfaceEuler ? " (image " + std::to_string(*f.ImageSurfaceEuler) + ")" : std::string());
+  return std::to_string(f.SurfaceEuler) + (f.ImageSurfaceEuler ? " (image " + ImageEulerText(f) + ")" : std::string());
 }
 
 // The per-tissue topology table and the one-line verdict on the whole mesh.
@@ -119,10 +147,10 @@ void FormatTopology(std::ostringstream& out, const RunReport& report)
   out << "  tissue  pieces (face / vertex)  hinged parts  non-manifold edges / vertices  Euler (image)\n";
   for (const auto& [label, f] : report.Tissues)
   {
-    char line[200];
+    char line[240];
     std::snprintf(line, sizeof(line), "  %-6lld  %8lld / %-11lld  %12lld  %18lld / %-8lld  %lld (%s)\n", label,
       f.FaceComponents, f.VertexComponents, f.HingedParts, f.NonManifoldEdges, f.NonManifoldVertices,
-      f.SurfaceEuler, f.ImageSurfaceEuler ? std::to_string(*f.ImageSurfaceEuler).c_str() : "-");
+      f.SurfaceEuler, ImageEulerText(f).c_str());
     out << line;
   }
   const TissueFigures& all = report.Overall;

@@ -46,6 +46,10 @@ struct TissueFigures
   long long NonManifoldVertices = 0;
   long long SurfaceEuler = 0;
   std::optional<long long> ImageSurfaceEuler;
+  // A manifold surface round the same voxels with every pinch joined, and every one parted
+  // (cbc3d::ImageTopology): the voxel-face figure is their mean.
+  std::optional<long long> ImagePinchesJoinedEuler;
+  std::optional<long long> ImagePinchesPartedEuler;
 };
 
 /// What one run of cbc3d measured.

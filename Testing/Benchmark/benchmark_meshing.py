@@ -313,14 +313,25 @@ def print_tissues(results):
     print_table(header, rows)
 
 
+def image_euler_text(t):
+    """The image's Euler characteristic, and where its voxels pinch, what a manifold surface
+    round them has with every pinch joined and parted (cbc3d's report has both)."""
+    image = t.get("image_surface_euler")
+    if image is None:
+        return "-"
+    joined, parted = t.get("image_surface_euler_pinches_joined"), t.get("image_surface_euler_pinches_parted")
+    if joined is None or parted is None or joined == parted == image:
+        return "%d" % image
+    return "%d (manifold %d to %d)" % (image, joined, parted)
+
+
 def topology_cells(t):
     """Face / vertex components, hinged parts, non-manifold edges / vertices, Euler mesh / image."""
     if not t or "face_components" not in t:
         return ["-"] * 4
-    image = t.get("image_surface_euler")
     return ["%d / %d" % (t["face_components"], t["vertex_components"]), "%d" % t["hinged_parts"],
             "%d / %d" % (t["nonmanifold_edges"], t["nonmanifold_vertices"]),
-            "%d / %s" % (t["surface_euler"], "-" if image is None else "%d" % image)]
+            "%d / %s" % (t["surface_euler"], image_euler_text(t))]
 
 
 def print_topology(results):

@@ -75,6 +75,12 @@ with tempfile.TemporaryDirectory() as work:
               "tissue %s: image Euler characteristic %r, expected %d" % (label, tissue.get("image_surface_euler"), euler))
         check(tissue.get("hinged_parts") == tissue.get("face_components", 0) - tissue.get("vertex_components", 0),
               "tissue %s: hinged parts are face minus vertex components" % label)
+        joined, parted = tissue.get("image_surface_euler_pinches_joined"), tissue.get("image_surface_euler_pinches_parted")
+        # The phantom's shells have no voxels touching only along an edge or at a corner: a
+        # manifold surface round them has their voxel-face figure either way.
+        check(joined == euler and parted == euler,
+              "tissue %s: the manifold readings %r (pinches joined) and %r (parted) are the image's %d"
+              % (label, joined, parted, euler))
     if all(k in topology for k in topology_keys):
         tissues = report["tissues"].values()
         ready = (topology["hinged_parts"] == 0 and topology["nonmanifold_edges"] == 0

@@ -115,17 +115,40 @@ inline bool Mixed(unsigned bits, unsigned all)
   return bits != 0 && bits != all;
 }
 
-// V - E + F of the corners k in [first, last] of the box: a corner, edge or face is on the
-// voxel-face surface when its voxels (8, 4 or 2) are mixed. Each corner counts itself, its
-// edges towards +x, +y and +z and its faces whose lowest corner it is; every one of them lies
-// among the corner's 8 voxels, so a corner with none mixed counts nothing.
+// Two sums over the corners of a box: V - E + F of the voxel-face surface, and V - E + F - C of
+// the voxels joined through faces only (vertices at voxel centres, edges between face neighbours,
+// squares and cubes where 4 and 8 voxels are all inside).
+struct EulerSums
+{
+  std::int64_t Face = 0;
+  std::int64_t Parted = 0;
+  EulerSums& operator+=(const EulerSums& other)
+  {
+    this->Face += other.Face;
+    this->Parted += other.Parted;
+    return *this;
+  }
+};
+
+// Whether all the voxels of these bits (of a corner code) are inside.
+inline bool All(unsigned bits, unsigned all)
+{
+  return bits == all;
+}
+
+// The sums of the corners k in [first, last] of the box. Voxel-face: a corner, edge or face is
+// on the surface when its voxels (8, 4 or 2) are mixed; each corner counts itself, its edges
+// towards +x, +y and +z and its faces whose lowest corner it is, all among its 8 voxels, so a
+// corner with none mixed counts nothing. Parted: each corner counts the cells whose highest
+// voxel is its voxel (x, y, k): that voxel, its pairs with the voxels below it along x, y and
+// z, its three squares and the cube of the corner's 8 voxels.
 template <typename Inside>
-std::int64_t SlabEuler(const LabelImage& image, const std::array<int, 3>& lower, const std::array<int, 3>& upper,
+EulerSums SlabEuler(const LabelImage& image, const std::array<int, 3>& lower, const std::array<int, 3>& upper,
   int first, int last, Inside inside)
 {
   std::array<CornerCodes, 2> slices = { CornerCodes(lower, upper), CornerCodes(lower, upper) };
   const std::vector<unsigned char>* below = &slices[0].Of(image, first - 1, inside);
-  std::int64_t euler = 0;
+  EulerSums sums;
   for (int k = first; k <= last; ++k)
   {
     const std::vector<unsigned char>& previous = *below;
@@ -137,32 +160,38 @@ std::int64_t SlabEuler(const LabelImage& image, const std::array<int, 3>& lower,
         continue;
       const unsigned edgeX = (q0 >> 1 & 1) | (q0 >> 3 & 1) << 1 | (q1 >> 1 & 1) << 2 | (q1 >> 3 & 1) << 3;
       const unsigned edgeY = (q0 >> 2) | (q1 >> 2) << 2;
-      euler += 1 - Mixed(edgeX, 15) - Mixed(edgeY, 15) - Mixed(q1, 15);
-      euler += Mixed(q1 >> 2, 3) + Mixed((q1 >> 1 & 1) | (q1 >> 3 & 1) << 1, 3) + Mixed((q0 >> 3) | (q1 >> 3) << 1, 3);
+      const unsigned pairX = q1 >> 2, pairY = (q1 >> 1 & 1) | (q1 >> 3 & 1) << 1, pairZ = (q0 >> 3) | (q1 >> 3) << 1;
+      sums.Face += 1 - Mixed(edgeX, 15) - Mixed(edgeY, 15) - Mixed(q1, 15);
+      sums.Face += Mixed(pairX, 3) + Mixed(pairY, 3) + Mixed(pairZ, 3);
+      sums.Parted += int(q1 >> 3) - All(pairX, 3) - All(pairY, 3) - All(pairZ, 3);
+      sums.Parted += All(q1, 15) + All(edgeX, 15) + All(edgeY, 15);
     }
     below = &current;
   }
-  return euler;
+  return sums;
 }
 
-// V - E + F of the voxel-face surface of the voxels `inside(voxelIndex)` selects, all of them
-// within [lower, upper]: slabs of corner slices on the threads, summed exactly (integers), so
-// the same for any thread count; no memory beyond a few slices per thread.
+// The sums for the voxels `inside(voxelIndex)` selects, all of them within [lower, upper]: slabs
+// of corner slices on the threads, summed exactly (integers), so the same for any thread count;
+// no memory beyond a few slices per thread.
 template <typename Inside>
-std::int64_t VoxelSurfaceEuler(const LabelImage& image, const std::array<int, 3>& lower,
+EulerSums VoxelSurfaceEuler(const LabelImage& image, const std::array<int, 3>& lower,
   const std::array<int, 3>& upper, int threads, Inside inside)
 {
   const int slices = upper[2] - lower[2] + 2; // corner slices lower[2] .. upper[2] + 1
   const int slabs = std::min(slices, 8 * ThreadCount(threads));
-  std::int64_t euler = 0;
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : euler) num_threads(ThreadCount(threads))
+  std::vector<EulerSums> perSlab(slabs);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(ThreadCount(threads))
   for (int slab = 0; slab < slabs; ++slab)
   {
     const int first = lower[2] + int(std::int64_t(slices) * slab / slabs);
     const int last = lower[2] + int(std::int64_t(slices) * (slab + 1) / slabs) - 1;
-    euler += SlabEuler(image, lower, upper, first, last, inside);
+    perSlab[slab] = SlabEuler(image, lower, upper, first, last, inside);
   }
-  return euler;
+  EulerSums sums;
+  for (const EulerSums& slab : perSlab)
+    sums += slab;
+  return sums;
 }
 
 ImageTopology Measure(const LabelImage& image, bool withWhole, int numberOfThreads)
@@ -184,23 +213,33 @@ ImageTopology Measure(const LabelImage& image, bool withWhole, int numberOfThrea
   }
   // One tissue after another, each in parallel; the whole body is the tissue where there is one.
   const auto& labels = image.Labels;
-  std::vector<std::int64_t> euler;
+  std::vector<EulerSums> sums;
   for (const LabelBox& box : boxes)
   {
-    euler.push_back(VoxelSurfaceEuler(image, box.Lower, box.Upper, numberOfThreads,
+    sums.push_back(VoxelSurfaceEuler(image, box.Lower, box.Upper, numberOfThreads,
       [&labels, &box](std::int64_t v) { return labels[v] == box.Label; }));
   }
   if (withWhole)
   {
-    euler.push_back(boxes.size() == 1 ? euler[0]
-                                      : VoxelSurfaceEuler(image, whole.Lower, whole.Upper, numberOfThreads,
-                                          [&image](std::int64_t v) { return image.IsTissue(image.Labels[v]); }));
+    sums.push_back(boxes.size() == 1 ? sums[0]
+                                     : VoxelSurfaceEuler(image, whole.Lower, whole.Upper, numberOfThreads,
+                                         [&image](std::int64_t v) { return image.IsTissue(image.Labels[v]); }));
   }
+  // The voxel-face figure is the two manifold readings' mean, corner by corner: the joined
+  // reading is what the face sum leaves beside the parted one.
+  auto joined = [](const EulerSums& s) { return 2 * (s.Face - s.Parted); };
   for (std::size_t i = 0; i < boxes.size(); ++i)
   {
-    topology.TissueSurfaceEuler[boxes[i].Label] = euler[i];
+    topology.TissueSurfaceEuler[boxes[i].Label] = sums[i].Face;
+    topology.TissuePinchesJoinedEuler[boxes[i].Label] = joined(sums[i]);
+    topology.TissuePinchesPartedEuler[boxes[i].Label] = 2 * sums[i].Parted;
   }
-  topology.WholeSurfaceEuler = withWhole ? euler.back() : 0;
+  if (withWhole)
+  {
+    topology.WholeSurfaceEuler = sums.back().Face;
+    topology.WholePinchesJoinedEuler = joined(sums.back());
+    topology.WholePinchesPartedEuler = 2 * sums.back().Parted;
+  }
   return topology;
 }
 } // namespace

@@ -13,10 +13,22 @@ namespace cbc3d
 /// faces between a voxel of the set and one that is not (beyond the image counts as not), and
 /// V and E count the distinct voxel corners and voxel edges of those faces. A ball has 2, a
 /// solid torus 0, a thick spherical shell 4; two cubes meeting along an edge or at a corner 3.
+///
+/// Where voxels of a set touch only along an edge or at a corner (a pinch), that surface is not
+/// a 2-manifold, and a manifold surface round the same voxels must either join the two sides
+/// there or part them. The two extreme readings are the Euler characteristics of the surface of
+/// the voxels joined through faces, edges and corners (every pinch joined: twice that of the
+/// union of closed voxels) and of the voxels joined through faces only (every pinch parted:
+/// twice that of the complex of voxel centres, face-neighbour edges, squares and cubes). The
+/// voxel-face figure is exactly their mean; the three agree where the set has no pinch.
 struct ImageTopology
 {
   std::int64_t WholeSurfaceEuler = 0;
+  std::int64_t WholePinchesJoinedEuler = 0;
+  std::int64_t WholePinchesPartedEuler = 0;
   std::map<std::int32_t, std::int64_t> TissueSurfaceEuler; // keyed by label value
+  std::map<std::int32_t, std::int64_t> TissuePinchesJoinedEuler;
+  std::map<std::int32_t, std::int64_t> TissuePinchesPartedEuler;
 };
 
 /// Every tissue's and the whole body's surface Euler characteristic. Each set is scanned over

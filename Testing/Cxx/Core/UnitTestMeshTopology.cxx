@@ -323,3 +323,113 @@ TEST(ImageTopology, RandomImagesMatchCountingEveryFace)
       << "trial " << trial;
   }
 }
+
+namespace
+{
+// The two manifold readings counted from their definitions. Joined: twice V - E + F - C of the
+// union of closed voxels (every corner, edge and face of a selected voxel, collected in sets).
+// Parted: twice V - E + F - C of the voxels joined through faces (voxels, face-neighbour pairs,
+// 2 x 2 squares and 2 x 2 x 2 cubes all selected).
+std::array<std::int64_t, 2> ManifoldReadingsByEnumeration(
+  const cbc3d::LabelImage& image, const std::function<bool(std::int32_t)>& selected)
+{
+  const auto& d = image.Dimensions;
+  auto in = [&](int i, int j, int k) {
+    return i >= 0 && j >= 0 && k >= 0 && i < d[0] && j < d[1] && k < d[2] && selected(image.LabelAt(i, j, k));
+  };
+  std::set<std::array<int, 3>> corners;
+  std::set<std::array<int, 4>> edges, faces; // lower corner and axis (of the edge; across the face)
+  std::int64_t cubes = 0, pairs = 0, squares = 0, blocks = 0;
+  for (int k = -1; k < d[2]; ++k)
+    for (int j = -1; j < d[1]; ++j)
+      for (int i = -1; i < d[0]; ++i)
+      {
+        if (in(i, j, k))
+        {
+          ++cubes;
+          for (int c = 0; c < 8; ++c)
+            corners.insert({ i + (c & 1), j + (c >> 1 & 1), k + (c >> 2) });
+          for (int a = 0; a < 3; ++a)
+            for (int u = 0; u < 2; ++u)
+              for (int v = 0; v < 2; ++v)
+              {
+                std::array<int, 3> at = { i, j, k };
+                at[(a + 1) % 3] += u;
+                at[(a + 2) % 3] += v;
+                edges.insert({ at[0], at[1], at[2], a });
+                std::array<int, 3> face = { i, j, k };
+                face[a] += u;
+                faces.insert({ face[0], face[1], face[2], a });
+              }
+        }
+        // The parted complex's cells whose lowest voxel is (i, j, k).
+        const bool here = in(i, j, k);
+        pairs += here && in(i + 1, j, k);
+        pairs += here && in(i, j + 1, k);
+        pairs += here && in(i, j, k + 1);
+        squares += here && in(i + 1, j, k) && in(i, j + 1, k) && in(i + 1, j + 1, k);
+        squares += here && in(i + 1, j, k) && in(i, j, k + 1) && in(i + 1, j, k + 1);
+        squares += here && in(i, j + 1, k) && in(i, j, k + 1) && in(i, j + 1, k + 1);
+        bool block = true;
+        for (int c = 0; c < 8; ++c)
+          block = block && in(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2));
+        blocks += block;
+      }
+  const std::int64_t joined = std::int64_t(corners.size()) - std::int64_t(edges.size()) + std::int64_t(faces.size()) - cubes;
+  const std::int64_t parted = cubes - pairs + squares - blocks;
+  return { 2 * joined, 2 * parted };
+}
+} // namespace
+
+TEST(ImageTopology, PinchesJoinedOrPartedAroundTheVoxelFaceFigure)
+{
+  // Two voxels touching along an edge, or at a corner: a bridge (one ball) or two balls.
+  for (const std::array<int, 3> other : { std::array<int, 3>{ 1, 1, 0 }, std::array<int, 3>{ 1, 1, 1 } })
+  {
+    const cbc3d::ImageTopology topology = cbc3d::MeasureImageTopology(Voxels({ 2, 2, 2 }, { { 0, 0, 0 }, other }));
+    EXPECT_EQ(topology.TissueSurfaceEuler.at(1), 3);
+    EXPECT_EQ(topology.TissuePinchesJoinedEuler.at(1), 2);
+    EXPECT_EQ(topology.TissuePinchesPartedEuler.at(1), 4);
+    EXPECT_EQ(topology.WholePinchesJoinedEuler, 2);
+    EXPECT_EQ(topology.WholePinchesPartedEuler, 4);
+  }
+  // Without a pinch the three agree: a solid torus of 8 voxels.
+  std::vector<std::array<int, 3>> ring;
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 3; ++x)
+      if (x != 1 || y != 1)
+        ring.push_back({ x, y, 0 });
+  const cbc3d::ImageTopology torus = cbc3d::MeasureImageTopology(Voxels({ 3, 3, 2 }, ring));
+  EXPECT_EQ(torus.TissuePinchesJoinedEuler.at(1), 0);
+  EXPECT_EQ(torus.TissuePinchesPartedEuler.at(1), 0);
+  // Four voxels round the middle one of a 3 x 3 slice, each touching the next along an edge:
+  // joined, a ring (a torus); parted, four separate voxels.
+  const cbc3d::ImageTopology square =
+    cbc3d::MeasureImageTopology(Voxels({ 3, 3, 1 }, { { 1, 0, 0 }, { 0, 1, 0 }, { 2, 1, 0 }, { 1, 2, 0 } }));
+  EXPECT_EQ(square.TissuePinchesJoinedEuler.at(1), 0); // a ring round the middle voxel
+  EXPECT_EQ(square.TissuePinchesPartedEuler.at(1), 8); // four separate voxels
+  EXPECT_EQ(square.TissueSurfaceEuler.at(1), 4);
+}
+
+TEST(ImageTopology, RandomImagesManifoldReadingsMatchTheirDefinitions)
+{
+  std::mt19937 random(777);
+  for (int trial = 0; trial < 60; ++trial)
+  {
+    const std::array<int, 3> dimensions = { 2 + int(random() % 6), 2 + int(random() % 6), 2 + int(random() % 7) };
+    cbc3d::LabelImage image = Voxels(dimensions, {});
+    const int density = 1 + int(random() % 4);
+    for (auto& label : image.Labels)
+      label = int(random() % 5) < density ? 1 + int(random() % 3) : 0;
+    const cbc3d::ImageTopology topology = cbc3d::MeasureImageTopology(image, 1 + trial % 3);
+    for (const auto& [label, euler] : topology.TissueSurfaceEuler)
+    {
+      const auto readings = ManifoldReadingsByEnumeration(image, [label = label](std::int32_t l) { return l == label; });
+      EXPECT_EQ(topology.TissuePinchesJoinedEuler.at(label), readings[0]) << "trial " << trial << ", label " << label;
+      EXPECT_EQ(topology.TissuePinchesPartedEuler.at(label), readings[1]) << "trial " << trial << ", label " << label;
+    }
+    const auto whole = ManifoldReadingsByEnumeration(image, [](std::int32_t l) { return l != 0; });
+    EXPECT_EQ(topology.WholePinchesJoinedEuler, whole[0]) << "trial " << trial;
+    EXPECT_EQ(topology.WholePinchesPartedEuler, whole[1]) << "trial " << trial;
+  }
+}

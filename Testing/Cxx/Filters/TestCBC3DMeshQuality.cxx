@@ -183,7 +183,12 @@ void TestBlockHausdorff()
   CHECK(warnings->Text.find("tissue 7 is in the image but not in the mesh") != std::string::npos);
   // The lost voxel touches the block at a corner: two spheres glued at a point in the image.
   CHECK(Field(out, vtkCBC3DArrayNames::ImageSurfaceEuler) == 3);
+  // A manifold surface round those voxels joins them (one ball) or parts them (two).
+  CHECK(Field(out, vtkCBC3DArrayNames::ImagePinchesJoinedEuler) == 2);
+  CHECK(Field(out, vtkCBC3DArrayNames::ImagePinchesPartedEuler) == 4);
   CHECK(Field(out, vtkCBC3DArrayNames::TissueImageSurfaceEuler, 1) == 2);
+  CHECK(Field(out, vtkCBC3DArrayNames::TissueImagePinchesJoinedEuler, 1) == 2);
+  CHECK(Field(out, vtkCBC3DArrayNames::TissueImagePinchesPartedEuler, 1) == 2);
   CHECK(Field(out, vtkCBC3DArrayNames::TissueFaceComponents, 1) == 0);
   CHECK(Field(out, vtkCBC3DArrayNames::TissueSurfaceEuler, 1) == 0);
 }
@@ -215,6 +220,8 @@ void TestTopology()
   CHECK(Field(out, names::SolverReady) == 0);
   CHECK(out->GetFieldData()->GetArray(names::ImageSurfaceEuler) == nullptr);
   CHECK(out->GetFieldData()->GetArray(names::TissueImageSurfaceEuler) == nullptr);
+  CHECK(out->GetFieldData()->GetArray(names::ImagePinchesJoinedEuler) == nullptr);
+  CHECK(out->GetFieldData()->GetArray(names::TissueImagePinchesPartedEuler) == nullptr);
   for (vtkIdType i = 0; i < 2; ++i)
   {
     CHECK(Field(out, names::TissueLabel, i) == i + 1);
