@@ -29,6 +29,7 @@
 #include <limits>
 #include <set>
 #include <utility>
+#include <functional>
 #include <map>
 #include <vector>
 
@@ -98,11 +99,19 @@ void AddTopologyFields(vtkFieldData* fields, const cbc3d::MeshTopology& topology
   if (image)
   {
     one(names::ImageSurfaceEuler, image->WholeSurfaceEuler);
-    one(names::ImagePinchesJoinedEuler, image->WholePinchesJoinedEuler);
+    one(names::ImagePinchesJoinedEuler, image->WholePinchesJoinedEuler());
     one(names::ImagePinchesPartedEuler, image->WholePinchesPartedEuler);
   }
 
-  // One column per field of RegionTopology; a tissue the mesh lacks is the empty set's zeros.
+  // One value per tissue row; a tissue the mesh lacks is the empty set's zeros.
+  auto addColumn = [&](const char* name, const std::function<vtkIdType(int)>& valueOf) {
+    std::vector<vtkIdType> values;
+    for (const int label : labels)
+    {
+      values.push_back(valueOf(label));
+    }
+    AddFieldArray<vtkIdTypeArray>(fields, name, values);
+  };
   using Field = std::int64_t cbc3d::RegionTopology::*;
   const std::pair<const char*, Field> columns[] = {
     { names::TissueFaceComponents, &cbc3d::RegionTopology::FaceComponents },
@@ -112,33 +121,23 @@ void AddTopologyFields(vtkFieldData* fields, const cbc3d::MeshTopology& topology
     { names::TissueNonManifoldVertices, &cbc3d::RegionTopology::NonManifoldVertices },
     { names::TissueSurfaceEuler, &cbc3d::RegionTopology::SurfaceEuler },
   };
-  for (const auto& column : columns)
+  for (const auto& [name, field] : columns)
   {
-    std::vector<vtkIdType> values;
-    for (const int label : labels)
-    {
+    addColumn(name, [&, field = field](int label) {
       const auto found = topology.Tissues.find(label);
-      values.push_back(found == topology.Tissues.end() ? 0 : found->second.*column.second);
-    }
-    AddFieldArray<vtkIdTypeArray>(fields, column.first, values);
+      return found == topology.Tissues.end() ? 0 : found->second.*field;
+    });
   }
   if (image)
   {
-    const std::pair<const char*, const std::map<std::int32_t, std::int64_t>*> imageColumns[] = {
-      { names::TissueImageSurfaceEuler, &image->TissueSurfaceEuler },
-      { names::TissueImagePinchesJoinedEuler, &image->TissuePinchesJoinedEuler },
-      { names::TissueImagePinchesPartedEuler, &image->TissuePinchesPartedEuler },
-    };
-    for (const auto& column : imageColumns)
-    {
-      std::vector<vtkIdType> values;
-      for (const int label : labels)
-      {
-        const auto found = column.second->find(label);
-        values.push_back(found == column.second->end() ? 0 : found->second);
-      }
-      AddFieldArray<vtkIdTypeArray>(fields, column.first, values);
-    }
+    // A tissue the image lacks has no voxels: Euler 0 every way.
+    auto has = [image](int label) { return image->TissueSurfaceEuler.count(label) > 0; };
+    addColumn(names::TissueImageSurfaceEuler,
+      [&](int label) { return has(label) ? image->TissueSurfaceEuler.at(label) : 0; });
+    addColumn(names::TissueImagePinchesJoinedEuler,
+      [&](int label) { return has(label) ? image->TissuePinchesJoinedEuler(label) : 0; });
+    addColumn(names::TissueImagePinchesPartedEuler,
+      [&](int label) { return has(label) ? image->TissuePinchesPartedEuler.at(label) : 0; });
   }
 }
 

@@ -2,6 +2,7 @@
 
 #include <vtkByteSwap.h>
 #include <vtk_zlib.h>
+#include <vtksys/SystemTools.hxx>
 
 #include <libdeflate.h>
 
@@ -15,11 +16,6 @@
 namespace
 {
 constexpr std::size_t NIfTI1HeaderBytes = 348;
-
-bool EndsWith(const std::string& text, const std::string& end)
-{
-  return text.size() >= end.size() && text.compare(text.size() - end.size(), end.size(), end) == 0;
-}
 
 bool ReadWholeFile(const std::string& fileName, std::vector<unsigned char>& bytes)
 {
@@ -69,7 +65,7 @@ T HeaderField(const unsigned char* header, std::size_t offset, bool swap)
 vtkSmartPointer<vtkDataArray> InflateNIfTIVoxels(const std::string& fileName, int scalarType, vtkIdType voxels)
 {
   std::vector<unsigned char> compressed;
-  if (!EndsWith(fileName, ".nii.gz") || voxels <= 0 || !ReadWholeFile(fileName, compressed))
+  if (!vtksys::SystemTools::StringEndsWith(fileName, ".nii.gz") || voxels <= 0 || !ReadWholeFile(fileName, compressed))
     return nullptr;
   vtkSmartPointer<vtkDataArray> array = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(scalarType));
   if (!array)

@@ -225,19 +225,15 @@ ImageTopology Measure(const LabelImage& image, bool withWhole, int numberOfThrea
                                      : VoxelSurfaceEuler(image, whole.Lower, whole.Upper, numberOfThreads,
                                          [&image](std::int64_t v) { return image.IsTissue(image.Labels[v]); }));
   }
-  // The voxel-face figure is the two manifold readings' mean, corner by corner: the joined
-  // reading is what the face sum leaves beside the parted one.
-  auto joined = [](const EulerSums& s) { return 2 * (s.Face - s.Parted); };
+  // The joined reading follows from these two (ImageTopology::PinchesJoined).
   for (std::size_t i = 0; i < boxes.size(); ++i)
   {
     topology.TissueSurfaceEuler[boxes[i].Label] = sums[i].Face;
-    topology.TissuePinchesJoinedEuler[boxes[i].Label] = joined(sums[i]);
     topology.TissuePinchesPartedEuler[boxes[i].Label] = 2 * sums[i].Parted;
   }
   if (withWhole)
   {
     topology.WholeSurfaceEuler = sums.back().Face;
-    topology.WholePinchesJoinedEuler = joined(sums.back());
     topology.WholePinchesPartedEuler = 2 * sums.back().Parted;
   }
   return topology;

@@ -24,11 +24,24 @@ namespace cbc3d
 struct ImageTopology
 {
   std::int64_t WholeSurfaceEuler = 0;
-  std::int64_t WholePinchesJoinedEuler = 0;
   std::int64_t WholePinchesPartedEuler = 0;
   std::map<std::int32_t, std::int64_t> TissueSurfaceEuler; // keyed by label value
-  std::map<std::int32_t, std::int64_t> TissuePinchesJoinedEuler;
   std::map<std::int32_t, std::int64_t> TissuePinchesPartedEuler;
+
+  /// The joined reading, from the other two (the voxel-face figure is their mean).
+  static std::int64_t PinchesJoined(std::int64_t surfaceEuler, std::int64_t partedEuler)
+  {
+    return 2 * surfaceEuler - partedEuler;
+  }
+  std::int64_t WholePinchesJoinedEuler() const
+  {
+    return PinchesJoined(this->WholeSurfaceEuler, this->WholePinchesPartedEuler);
+  }
+  /// A tissue's joined reading; the label must be one of TissueSurfaceEuler's.
+  std::int64_t TissuePinchesJoinedEuler(std::int32_t label) const
+  {
+    return PinchesJoined(this->TissueSurfaceEuler.at(label), this->TissuePinchesPartedEuler.at(label));
+  }
 };
 
 /// Every tissue's and the whole body's surface Euler characteristic. Each set is scanned over

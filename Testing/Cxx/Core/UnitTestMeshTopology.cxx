@@ -388,9 +388,9 @@ TEST(ImageTopology, PinchesJoinedOrPartedAroundTheVoxelFaceFigure)
   {
     const cbc3d::ImageTopology topology = cbc3d::MeasureImageTopology(Voxels({ 2, 2, 2 }, { { 0, 0, 0 }, other }));
     EXPECT_EQ(topology.TissueSurfaceEuler.at(1), 3);
-    EXPECT_EQ(topology.TissuePinchesJoinedEuler.at(1), 2);
+    EXPECT_EQ(topology.TissuePinchesJoinedEuler(1), 2);
     EXPECT_EQ(topology.TissuePinchesPartedEuler.at(1), 4);
-    EXPECT_EQ(topology.WholePinchesJoinedEuler, 2);
+    EXPECT_EQ(topology.WholePinchesJoinedEuler(), 2);
     EXPECT_EQ(topology.WholePinchesPartedEuler, 4);
   }
   // Without a pinch the three agree: a solid torus of 8 voxels.
@@ -400,13 +400,13 @@ TEST(ImageTopology, PinchesJoinedOrPartedAroundTheVoxelFaceFigure)
       if (x != 1 || y != 1)
         ring.push_back({ x, y, 0 });
   const cbc3d::ImageTopology torus = cbc3d::MeasureImageTopology(Voxels({ 3, 3, 2 }, ring));
-  EXPECT_EQ(torus.TissuePinchesJoinedEuler.at(1), 0);
+  EXPECT_EQ(torus.TissuePinchesJoinedEuler(1), 0);
   EXPECT_EQ(torus.TissuePinchesPartedEuler.at(1), 0);
   // Four voxels round the middle one of a 3 x 3 slice, each touching the next along an edge:
   // joined, a ring (a torus); parted, four separate voxels.
   const cbc3d::ImageTopology square =
     cbc3d::MeasureImageTopology(Voxels({ 3, 3, 1 }, { { 1, 0, 0 }, { 0, 1, 0 }, { 2, 1, 0 }, { 1, 2, 0 } }));
-  EXPECT_EQ(square.TissuePinchesJoinedEuler.at(1), 0); // a ring round the middle voxel
+  EXPECT_EQ(square.TissuePinchesJoinedEuler(1), 0); // a ring round the middle voxel
   EXPECT_EQ(square.TissuePinchesPartedEuler.at(1), 8); // four separate voxels
   EXPECT_EQ(square.TissueSurfaceEuler.at(1), 4);
 }
@@ -425,11 +425,11 @@ TEST(ImageTopology, RandomImagesManifoldReadingsMatchTheirDefinitions)
     for (const auto& [label, euler] : topology.TissueSurfaceEuler)
     {
       const auto readings = ManifoldReadingsByEnumeration(image, [label = label](std::int32_t l) { return l == label; });
-      EXPECT_EQ(topology.TissuePinchesJoinedEuler.at(label), readings[0]) << "trial " << trial << ", label " << label;
+      EXPECT_EQ(topology.TissuePinchesJoinedEuler(label), readings[0]) << "trial " << trial << ", label " << label;
       EXPECT_EQ(topology.TissuePinchesPartedEuler.at(label), readings[1]) << "trial " << trial << ", label " << label;
     }
     const auto whole = ManifoldReadingsByEnumeration(image, [](std::int32_t l) { return l != 0; });
-    EXPECT_EQ(topology.WholePinchesJoinedEuler, whole[0]) << "trial " << trial;
+    EXPECT_EQ(topology.WholePinchesJoinedEuler(), whole[0]) << "trial " << trial;
     EXPECT_EQ(topology.WholePinchesPartedEuler, whole[1]) << "trial " << trial;
   }
 }
