@@ -57,18 +57,18 @@ std::map<std::int32_t, std::vector<BoundaryCoverage::Face>> BoundaryCoverage::He
       tetOf.push_back(static_cast<std::int64_t>(t));
     }
   }
+  const auto bounding = [&](const MeshFace& face) {
+    return face.TetCount != 2 || labels[tetOf[face.Tets[0]]] != labels[tetOf[face.Tets[1]]];
+  };
   std::map<std::int32_t, std::vector<Face>> surfaces;
-  VisitMeshFaces(tissueTets, pointCount, this->Threads, [&](const MeshFace& face) {
+  for (const MeshFace& face : SelectMeshFaces(tissueTets, pointCount, this->Threads, bounding))
+  {
     for (int side = 0; side < std::min(face.TetCount, 2); ++side)
     {
       const std::int64_t tet = tetOf[face.Tets[side]];
-      const bool inside = face.TetCount == 2 && labels[tetOf[face.Tets[1 - side]]] == labels[tet];
-      if (!inside)
-      {
-        surfaces[labels[tet]].push_back({ face.Points, tet });
-      }
+      surfaces[labels[tet]].push_back({ face.Points, tet });
     }
-  });
+  }
   return surfaces;
 }
 

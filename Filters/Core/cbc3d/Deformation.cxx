@@ -194,9 +194,11 @@ private:
         }
       }
       const Eigen::Isometry3d rigid(Eigen::umeyama(from, to, false));
-      std::vector<Eigen::Vector3d> trial(x.size());
+      const std::int64_t pointCount = static_cast<std::int64_t>(x.size());
+      std::vector<Eigen::Vector3d> trial(pointCount);
       double largestMove = 0.0;
-      for (std::size_t p = 0; p < x.size(); ++p)
+#pragma omp parallel for schedule(static) reduction(max : largestMove) num_threads(ThreadCount(this->Params.NumberOfThreads))
+      for (std::int64_t p = 0; p < pointCount; ++p)
       {
         trial[p] = rigid * x[p];
         largestMove = std::max(largestMove, (trial[p] - x[p]).norm());

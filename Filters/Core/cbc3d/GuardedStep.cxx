@@ -55,7 +55,9 @@ StepOutcome GuardedStep(const TetMesh& mesh, const std::vector<Eigen::Vector3d>&
     }
     // Only tets with a point that moved since the last check, or that were spoilt then, can
     // have changed: the rest satisfied the bound when checked.
-    for (std::size_t p = 0; p < x.size(); ++p)
+    const std::int64_t pointCount = static_cast<std::int64_t>(x.size());
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
+    for (std::int64_t p = 0; p < pointCount; ++p)
     {
       const Eigen::Vector3d next = x[p] + share[p] * step(p);
       moved[p] = spoilt[p] || next != (round == 0 ? x[p] : trial[p]);

@@ -29,7 +29,7 @@ enum class StepOutcome
 /// Tries x + share * step(p); shortens it at the vertices of tets it would invert or push past
 /// the angle bound (by half each round, then not at all), and holds the vertices that would make
 /// a tissue's Hausdorff distance grow, until no tet is spoilt. `trial` and `share` hold the step
-/// made.
+/// made. `step` is called from `threads` threads at once.
 StepOutcome GuardedStep(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
   const std::function<Eigen::Vector3d(std::size_t)>& step, double bound, int threads,
   FidelityGuard& fidelity, const std::function<bool()>& keepGoing,

@@ -123,19 +123,18 @@ FaceBuckets BucketFaces(const std::vector<Tet>& tets, std::uint64_t pointCount, 
   }
   return buckets;
 }
-} // namespace
 
-std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads)
+/// The faces that `keep` holds for, in bucket order: each bucket counts its kept faces, then
+/// writes them from its own offset, so the list is the same for any number of threads.
+template <typename Keep>
+std::vector<MeshFace> CollectFaces(const FaceBuckets& buckets, std::uint64_t pointCount, int threads, const Keep& keep)
 {
-  const int threads = ThreadCount(numberOfThreads);
-  const FaceBuckets buckets = BucketFaces(tets, pointCount, threads);
   const std::int64_t bucketCount = static_cast<std::int64_t>(pointCount);
-  // Distinct faces per bucket, then each bucket writes its faces from its own offset.
   std::vector<std::size_t> firstFace(pointCount + 1, 0);
 #pragma omp parallel for schedule(dynamic, 4096) num_threads(threads)
   for (std::int64_t a = 0; a < bucketCount; ++a)
   {
-    buckets.ForEachFace(a, pointCount, [&](const MeshFace&) { ++firstFace[a + 1]; });
+    buckets.ForEachFace(a, pointCount, [&](const MeshFace& face) { firstFace[a + 1] += keep(face) ? 1 : 0; });
   }
   for (std::size_t a = 0; a < pointCount; ++a)
   {
@@ -146,54 +145,66 @@ std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t po
   for (std::int64_t a = 0; a < bucketCount; ++a)
   {
     std::size_t next = firstFace[a];
-    buckets.ForEachFace(a, pointCount, [&](const MeshFace& face) { faces[next++] = face; });
+    buckets.ForEachFace(a, pointCount, [&](const MeshFace& face) {
+      if (keep(face))
+      {
+        faces[next++] = face;
+      }
+    });
   }
   return faces;
 }
+} // namespace
 
-void VisitMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads,
-  const std::function<void(const MeshFace&)>& visit)
+std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads)
 {
-  const FaceBuckets buckets = BucketFaces(tets, pointCount, ThreadCount(numberOfThreads));
-  for (std::size_t a = 0; a < pointCount; ++a)
-  {
-    buckets.ForEachFace(a, pointCount, visit);
-  }
+  const int threads = ThreadCount(numberOfThreads);
+  return CollectFaces(BucketFaces(tets, pointCount, threads), pointCount, threads, [](const MeshFace&) { return true; });
+}
+
+std::vector<MeshFace> SelectMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads,
+  const std::function<bool(const MeshFace&)>& keep)
+{
+  const int threads = ThreadCount(numberOfThreads);
+  return CollectFaces(BucketFaces(tets, pointCount, threads), pointCount, threads, keep);
 }
 
 std::vector<MeshFace> SurfaceFaces(const TetMesh& mesh, int numberOfThreads)
 {
-  std::vector<MeshFace> faces;
-  VisitMeshFaces(mesh.Tets, mesh.Points.size(), numberOfThreads, [&](const MeshFace& face) {
-    if (face.TetCount != 2 || mesh.Labels[face.Tets[0]] != mesh.Labels[face.Tets[1]])
-    {
-      faces.push_back(face);
-    }
+  return SelectMeshFaces(mesh.Tets, mesh.Points.size(), numberOfThreads, [&](const MeshFace& face) {
+    return face.TetCount != 2 || mesh.Labels[face.Tets[0]] != mesh.Labels[face.Tets[1]];
   });
-  return faces;
 }
 
 std::vector<std::array<std::int64_t, 4>> FaceNeighbours(
   const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads)
 {
+  const int threads = ThreadCount(numberOfThreads);
+  const FaceBuckets buckets = BucketFaces(tets, pointCount, threads);
   std::vector<std::array<std::int64_t, 4>> across(tets.size(), { -1, -1, -1, -1 });
-  VisitMeshFaces(tets, pointCount, numberOfThreads, [&](const MeshFace& face) {
-    if (face.TetCount != 2)
-    {
-      return;
-    }
-    for (int side = 0; side < 2; ++side)
-    {
-      const Tet& tet = tets[face.Tets[side]];
-      for (int i = 0; i < 4; ++i)
+  // An inner face writes only its two tets' entries for it: the buckets can go in any order.
+  const std::int64_t bucketCount = static_cast<std::int64_t>(pointCount);
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(threads)
+  for (std::int64_t a = 0; a < bucketCount; ++a)
+  {
+    buckets.ForEachFace(a, pointCount, [&](const MeshFace& face) {
+      if (face.TetCount != 2)
       {
-        if (std::find(face.Points.begin(), face.Points.end(), tet[i]) == face.Points.end())
+        return;
+      }
+      for (int side = 0; side < 2; ++side)
+      {
+        const Tet& tet = tets[face.Tets[side]];
+        for (int i = 0; i < 4; ++i)
         {
-          across[face.Tets[side]][i] = face.Tets[1 - side];
+          if (std::find(face.Points.begin(), face.Points.end(), tet[i]) == face.Points.end())
+          {
+            across[face.Tets[side]][i] = face.Tets[1 - side];
+          }
         }
       }
-    }
-  });
+    });
+  }
   return across;
 }
 } // namespace cbc3d

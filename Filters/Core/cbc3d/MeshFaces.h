@@ -23,10 +23,11 @@ struct MeshFace
 /// (0 = all cores).
 std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads = 1);
 
-/// Calls `visit` for every distinct face, in FindMeshFaces' order, without keeping the list:
-/// for callers that want a few of the faces of a large mesh.
-void VisitMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads,
-  const std::function<void(const MeshFace&)>& visit);
+/// The faces for which `keep` holds, in FindMeshFaces' order, found on the threads without
+/// keeping every face: for callers that want a few of the faces of a large mesh. `keep` is
+/// called twice a face, from several threads at once.
+std::vector<MeshFace> SelectMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads,
+  const std::function<bool(const MeshFace&)>& keep);
 
 /// The faces of a labelled mesh that bound a label: on the mesh boundary, between two labels,
 /// or (a mesh that does not conform) shared by more than two tets; in FindMeshFaces' order.

@@ -151,17 +151,18 @@ void PointGrid::PointsNear(const Eigen::Vector3d& x, double radius, std::vector<
     }
 }
 
-bool PointGrid::GroupByCell(const std::vector<Eigen::Vector3d>& queries, int minimumPerCell, QueryGroups& groups) const
+bool PointGrid::GroupByCell(
+  const std::vector<Eigen::Vector3d>& queries, int minimumPerCell, QueryGroups& groups, int threads) const
 {
   const std::int64_t count = static_cast<std::int64_t>(queries.size());
   const std::int64_t cells = static_cast<std::int64_t>(this->CellStart.size()) - 1;
-  std::vector<int> start(cells + 1, 0);
   std::vector<std::int64_t> cellOf(queries.size());
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
   for (std::int64_t i = 0; i < count; ++i)
-  {
     cellOf[i] = this->CellIndex(queries[i]);
+  std::vector<int> start(cells + 1, 0);
+  for (std::int64_t i = 0; i < count; ++i)
     ++start[cellOf[i] + 1];
-  }
   groups.Start.assign(1, 0);
   for (std::int64_t c = 0; c < cells; ++c)
   {

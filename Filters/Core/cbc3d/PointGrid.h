@@ -73,9 +73,10 @@ private:
     std::vector<int> Start;
   };
 
-  // Groups the queries by cell; false (and no Order) where there are fewer than
-  // `minimumPerCell` per cell on average, too few for a shared search to pay.
-  bool GroupByCell(const std::vector<Eigen::Vector3d>& queries, int minimumPerCell, QueryGroups& groups) const;
+  // Groups the queries by cell (finding their cells on `threads`); false (and no Order) where
+  // there are fewer than `minimumPerCell` per cell on average, too few for a shared search to pay.
+  bool GroupByCell(
+    const std::vector<Eigen::Vector3d>& queries, int minimumPerCell, QueryGroups& groups, int threads) const;
 
   // The points that can answer a query of one group, nearest its centre first: a query e from
   // the centre is at least FromCentre - e from each, so its search ends at the first that is
@@ -167,7 +168,7 @@ std::vector<int> PointGrid::NearestOfAll(
   // matcher's targets: 8 a cell on the brain, searched one by one, 0.77 against 1.13 G
   // instructions shared; 36 a cell on the brain at twice the resolution, 3.23 against 2.30 G).
   QueryGroups groups;
-  if (!this->GroupByCell(queries, std::isinf(radius) ? 4 : 16, groups))
+  if (!this->GroupByCell(queries, std::isinf(radius) ? 4 : 16, groups, threads))
   {
 #pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(threads))
     for (std::int64_t q = 0; q < count; ++q)

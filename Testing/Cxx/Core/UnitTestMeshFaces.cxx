@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <iterator>
 #include <map>
 
 namespace
@@ -109,27 +110,35 @@ TEST(MeshFaces, ATetOverlappingAnotherMakesAFaceOfThree)
   EXPECT_EQ(faces.size(), 10u);
 }
 
-TEST(MeshFaces, VisitingGivesTheListInItsOrder)
+TEST(MeshFaces, SelectingKeepsTheListsOrder)
 {
   const cbc3d::TetMesh mesh = Block(4);
-  const auto faces = cbc3d::FindMeshFaces(mesh, 2);
-  std::size_t next = 0;
-  cbc3d::VisitMeshFaces(mesh.Tets, mesh.Points.size(), 2, [&](const cbc3d::MeshFace& face) {
-    ASSERT_LT(next, faces.size());
-    EXPECT_EQ(face.Points, faces[next].Points);
-    EXPECT_EQ(face.Tets, faces[next].Tets);
-    EXPECT_EQ(face.TetCount, faces[next].TetCount);
-    ++next;
-  });
-  EXPECT_EQ(next, faces.size());
+  const auto faces = cbc3d::FindMeshFaces(mesh, 1);
+  // Every other boundary face, picked by its points: the full list filtered is the answer.
+  const auto pick = [](const cbc3d::MeshFace& face) {
+    return face.TetCount == 1 && (face.Points[0] + face.Points[1] + face.Points[2]) % 2 == 0;
+  };
+  std::vector<cbc3d::MeshFace> expected;
+  std::copy_if(faces.begin(), faces.end(), std::back_inserter(expected), pick);
+  ASSERT_GT(expected.size(), 10u);
+  ASSERT_LT(expected.size(), faces.size() / 2);
+  for (const int threads : { 1, 2, 3 })
+  {
+    const auto selected = cbc3d::SelectMeshFaces(mesh.Tets, mesh.Points.size(), threads, pick);
+    ASSERT_EQ(selected.size(), expected.size());
+    for (std::size_t i = 0; i < selected.size(); ++i)
+    {
+      EXPECT_EQ(selected[i].Points, expected[i].Points);
+      EXPECT_EQ(selected[i].Tets, expected[i].Tets);
+      EXPECT_EQ(selected[i].TetCount, expected[i].TetCount);
+    }
+  }
 }
 
 TEST(MeshFaces, PointsWithoutTetsHaveNoFaces)
 {
   const std::vector<cbc3d::Tet> none;
   EXPECT_TRUE(cbc3d::FindMeshFaces(none, 5, 2).empty());
-  int visited = 0;
-  cbc3d::VisitMeshFaces(none, 5, 2, [&](const cbc3d::MeshFace&) { ++visited; });
-  EXPECT_EQ(visited, 0);
+  EXPECT_TRUE(cbc3d::SelectMeshFaces(none, 5, 2, [](const cbc3d::MeshFace&) { return true; }).empty());
   EXPECT_TRUE(cbc3d::FaceNeighbours(none, 5, 2).empty());
 }
