@@ -8,6 +8,8 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <initializer_list>
+#include <map>
 #include <sstream>
 
 namespace
@@ -175,176 +177,81 @@ std::string FileExtension(const std::string& path)
   return extension;
 }
 
-bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::string& error)
+namespace
 {
-  bool backgroundGiven = false;
-  std::vector<std::string> positional;
-  for (int i = 1; i < argc; ++i)
-  {
-    const std::string arg = argv[i];
-    auto value = [&](std::string& out) {
-      if (i + 1 >= argc)
-      {
-        error = "option " + arg + " needs a value";
-        return false;
-      }
-      out = argv[++i];
-      return true;
-    };
-    std::string text;
-    if (arg == "-h" || arg == "--help")
-    {
-      options.ShowHelp = true;
-    }
-    else if (arg == "--version")
-    {
-      options.ShowVersion = true;
-    }
-    else if (arg == "--quiet" || arg == "-q")
-    {
-      options.Quiet = true;
-    }
-    else if (arg == "-o" || arg == "--output")
-    {
-      if (!value(text))
-        return false;
-      options.Outputs.push_back(text);
-    }
-    else if (arg == "--surfaces")
-    {
-      if (!value(options.SurfacesPath))
-        return false;
-    }
-    else if (arg == "--msh-version")
-    {
-      if (!value(options.MshVersion))
-        return false;
-      if (options.MshVersion != "4.1" && options.MshVersion != "2.2")
-      {
-        error = "--msh-version must be 4.1 or 2.2, not '" + options.MshVersion + "'";
-        return false;
-      }
-    }
-    else if (arg == "--report")
-    {
-      if (!value(options.ReportPath))
-        return false;
-    }
-    else if (arg == "--bcc-size")
-    {
-      if (!value(text))
-        return false;
-      if (!ParseDouble(text, options.BCCSize) || !(options.BCCSize > 0.0))
-      {
-        error = "--bcc-size must be a positive number of millimetres, not '" + text + "'";
-        return false;
-      }
-    }
-    else if (arg == "--fidelity")
-    {
-      if (!value(text))
-        return false;
-      if (!ParseDouble(text, options.Fidelity) || options.Fidelity < 0.0 || options.Fidelity > 1.0)
-      {
-        error = "--fidelity must be a number from 0 to 1, not '" + text + "'";
-        return false;
-      }
-    }
-    else if (arg == "--boundary-distance")
-    {
-      if (!value(text))
-        return false;
-      if (!ParseDouble(text, options.BoundaryDistance))
-      {
-        error = "--boundary-distance must be a number of millimetres, not '" + text + "'";
-        return false;
-      }
-    }
-    else if (arg == "--pattern")
-    {
-      if (!value(options.Pattern))
-        return false;
-      if (options.Pattern != "vertex" && options.Pattern != "edge" && options.Pattern != "face" &&
-        options.Pattern != "none")
-      {
-        error = "--pattern must be vertex, edge, face or none, not '" + options.Pattern + "'";
-        return false;
-      }
-    }
-    else if (arg == "--targets")
-    {
-      if (!value(options.Targets))
-        return false;
-      if (options.Targets != "centre" && options.Targets != "face")
-      {
-        error = "--targets must be centre or face, not '" + options.Targets + "'";
-        return false;
-      }
-    }
-    else if (arg == "--keep-volumes")
-    {
-      if (!value(text))
-        return false;
-      if (text != "on" && text != "off")
-      {
-        error = "--keep-volumes must be on or off, not '" + text + "'";
-        return false;
-      }
-      options.KeepVolumes = text == "on";
-    }
-    else if (arg == "--iterations")
-    {
-      if (!value(text))
-        return false;
-      if (!ParseInt(text, options.Iterations) || options.Iterations < 0 || options.Iterations > MaximumIterations)
-      {
-        error = "--iterations must be a whole number from 0 to " + std::to_string(MaximumIterations) +
-          " (deformation stops once the surface settles, long before), not '" + text + "'";
-        return false;
-      }
-    }
-    else if (arg == "--background")
-    {
-      if (!value(text))
-        return false;
-      long long label = 0;
-      if (!ParseLabel(text, label))
-      {
-        error = "--background must be an integer label (64 bits), not '" + text + "'";
-        return false;
-      }
-      if (!backgroundGiven)
-      {
-        options.BackgroundLabels.clear(); // the first --background replaces the default 0
-        backgroundGiven = true;
-      }
-      options.BackgroundLabels.push_back(label);
-    }
-    else if (arg == "--threads")
-    {
-      if (!value(text))
-        return false;
-      if (!ParseInt(text, options.Threads) || options.Threads < 0 || options.Threads > cbc3d::MaximumThreads)
-      {
-        error = "--threads must be a whole number from 0 to " + std::to_string(cbc3d::MaximumThreads) +
-          " (0 = all cores), not '" + text + "'";
-        return false;
-      }
-    }
-    else if (arg.size() > 1 && arg[0] == '-')
-    {
-      error = "unknown option '" + arg + "' (see cbc3d --help)";
-      return false;
-    }
-    else
-    {
-      positional.push_back(arg);
-    }
-  }
-  if (options.ShowHelp || options.ShowVersion)
-  {
-    return true;
-  }
+// The options as they are read: the first --background replaces the default 0.
+struct Parsing
+{
+  CommandLineOptions& Options;
+  std::vector<long long> Backgrounds;
+};
+
+// What an option's value does to the options; false, with `error`, where it is not allowed.
+using SetValue = bool (*)(const std::string& text, Parsing& parsing, std::string& error);
+
+// Every refusal of a value takes one form: "--name must be <allowed>, not '<text>'".
+bool Refuse(const std::string& option, const std::string& allowed, const std::string& text, std::string& error)
+{
+  error = option + " must be " + allowed + ", not '" + text + "'";
+  return false;
+}
+
+bool OneOf(const std::string& text, std::initializer_list<const char*> allowed)
+{
+  return std::any_of(allowed.begin(), allowed.end(), [&](const char* value) { return text == value; });
+}
+
+// The options that write files, and how the mesh is made.
+const std::map<std::string, SetValue>& ValueOptions()
+{
+  static const std::map<std::string, SetValue> table = {
+    { "-o", [](const std::string& t, Parsing& p, std::string&) { p.Options.Outputs.push_back(t); return true; } },
+    { "--output", [](const std::string& t, Parsing& p, std::string&) { p.Options.Outputs.push_back(t); return true; } },
+    { "--surfaces", [](const std::string& t, Parsing& p, std::string&) { p.Options.SurfacesPath = t; return true; } },
+    { "--report", [](const std::string& t, Parsing& p, std::string&) { p.Options.ReportPath = t; return true; } },
+    { "--msh-version", [](const std::string& t, Parsing& p, std::string& e) {
+       p.Options.MshVersion = t;
+       return OneOf(t, { "4.1", "2.2" }) || Refuse("--msh-version", "4.1 or 2.2", t, e); } },
+    { "--bcc-size", [](const std::string& t, Parsing& p, std::string& e) {
+       return (ParseDouble(t, p.Options.BCCSize) && p.Options.BCCSize > 0.0) ||
+         Refuse("--bcc-size", "a positive number of millimetres", t, e); } },
+    { "--fidelity", [](const std::string& t, Parsing& p, std::string& e) {
+       return (ParseDouble(t, p.Options.Fidelity) && p.Options.Fidelity >= 0.0 && p.Options.Fidelity <= 1.0) ||
+         Refuse("--fidelity", "a number from 0 to 1", t, e); } },
+    { "--boundary-distance", [](const std::string& t, Parsing& p, std::string& e) {
+       return ParseDouble(t, p.Options.BoundaryDistance) ||
+         Refuse("--boundary-distance", "a number of millimetres", t, e); } },
+    { "--pattern", [](const std::string& t, Parsing& p, std::string& e) {
+       p.Options.Pattern = t;
+       return OneOf(t, { "vertex", "edge", "face", "none" }) || Refuse("--pattern", "vertex, edge, face or none", t, e); } },
+    { "--targets", [](const std::string& t, Parsing& p, std::string& e) {
+       p.Options.Targets = t;
+       return OneOf(t, { "centre", "face" }) || Refuse("--targets", "centre or face", t, e); } },
+    { "--keep-volumes", [](const std::string& t, Parsing& p, std::string& e) {
+       p.Options.KeepVolumes = t == "on";
+       return OneOf(t, { "on", "off" }) || Refuse("--keep-volumes", "on or off", t, e); } },
+    { "--iterations", [](const std::string& t, Parsing& p, std::string& e) {
+       const int most = MaximumIterations;
+       return (ParseInt(t, p.Options.Iterations) && p.Options.Iterations >= 0 && p.Options.Iterations <= most) ||
+         Refuse("--iterations", "a whole number from 0 to " + std::to_string(most) +
+             " (deformation stops once the surface settles, long before)", t, e); } },
+    { "--background", [](const std::string& t, Parsing& p, std::string& e) {
+       long long label = 0;
+       if (!ParseLabel(t, label))
+         return Refuse("--background", "an integer label (64 bits)", t, e);
+       p.Backgrounds.push_back(label);
+       return true; } },
+    { "--threads", [](const std::string& t, Parsing& p, std::string& e) {
+       const int most = cbc3d::MaximumThreads;
+       return (ParseInt(t, p.Options.Threads) && p.Options.Threads >= 0 && p.Options.Threads <= most) ||
+         Refuse("--threads", "a whole number from 0 to " + std::to_string(most) + " (0 = all cores)", t, e); } },
+  };
+  return table;
+}
+
+// The input and the first output, once every option is read.
+bool CheckPositional(const std::vector<std::string>& positional, CommandLineOptions& options, std::string& error)
+{
   if (positional.size() != 1)
   {
     error = positional.empty() ? "no input image given (see cbc3d --help)"
@@ -359,4 +266,44 @@ bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::
   }
   options.Output = options.Outputs.front();
   return CheckOutputs(options, error);
+}
+} // namespace
+
+bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::string& error)
+{
+  Parsing parsing{ options, {} };
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    const auto valued = ValueOptions().find(arg);
+    if (arg == "-h" || arg == "--help")
+      options.ShowHelp = true;
+    else if (arg == "--version")
+      options.ShowVersion = true;
+    else if (arg == "--quiet" || arg == "-q")
+      options.Quiet = true;
+    else if (valued != ValueOptions().end())
+    {
+      if (i + 1 >= argc)
+      {
+        error = "option " + arg + " needs a value";
+        return false;
+      }
+      if (!valued->second(argv[++i], parsing, error))
+        return false;
+    }
+    else if (arg.size() > 1 && arg[0] == '-')
+    {
+      error = "unknown option '" + arg + "' (see cbc3d --help)";
+      return false;
+    }
+    else
+      positional.push_back(arg);
+  }
+  if (!parsing.Backgrounds.empty())
+  {
+    options.BackgroundLabels = parsing.Backgrounds;
+  }
+  return options.ShowHelp || options.ShowVersion || CheckPositional(positional, options, error);
 }

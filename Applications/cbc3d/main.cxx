@@ -26,7 +26,9 @@
 #include <vtkNew.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <algorithm>
 #include <chrono>
+#include <initializer_list>
 #include <cstdio>
 #include <iostream>
 #include <malloc.h>
@@ -171,6 +173,87 @@ bool WriteOutputs(
   return options.SurfacesPath.empty() || (tag() && WriteSurfaceFile(tagged, options.SurfacesPath, error));
 }
 
+// Whether every file the run writes can be written: found out now, not after a long run.
+bool CanWriteOutputs(const CommandLineOptions& options, std::string& error)
+{
+  std::vector<std::string> written = options.Outputs;
+  written.push_back(options.ReportPath);
+  written.push_back(options.SurfacesPath);
+  return std::all_of(written.begin(), written.end(),
+    [&](const std::string& path) { return path.empty() || CanWriteBeside(path, error); });
+}
+
+// The meshing stages, kept together so that each one's output lives as long as the run.
+struct MeshingStages
+{
+  vtkNew<vtkCBC3DBCCLattice> Lattice;
+  vtkNew<vtkCBC3DRefinement> Refinement;
+  vtkNew<vtkCBC3DDeformation> Deformation;
+  vtkNew<vtkCBC3DMeshQuality> Quality;
+};
+
+// Chains the stages the options ask for on `image`: the lattice, refinement (a fidelity above
+// 0), deformation (iterations above 0), and the quality filter on the last of them.
+void ConfigureStages(MeshingStages& stages, vtkImageData* image, const CommandLineOptions& options)
+{
+  stages.Lattice->SetInputData(image);
+  stages.Lattice->SetEdgeLength(options.BCCSize);
+  vtkAlgorithm* last = stages.Lattice;
+  if (options.Fidelity > 0.0)
+  {
+    stages.Refinement->SetInputConnection(last->GetOutputPort());
+    stages.Refinement->SetImageData(image);
+    stages.Refinement->SetFidelity(options.Fidelity);
+    stages.Refinement->SetBoundaryDistance(options.BoundaryDistance);
+    last = stages.Refinement;
+  }
+  if (options.Iterations > 0)
+  {
+    stages.Deformation->SetInputConnection(last->GetOutputPort());
+    stages.Deformation->SetImageData(image);
+    stages.Deformation->SetIterations(options.Iterations);
+    stages.Deformation->SetPattern(PatternValue(options.Pattern));
+    stages.Deformation->SetTargetPlacement(
+      options.Targets == "face" ? vtkCBC3DDeformation::VOXEL_FACE : vtkCBC3DDeformation::VOXEL_CENTRE);
+    stages.Deformation->SetKeepVolumes(options.KeepVolumes);
+    last = stages.Deformation;
+  }
+  stages.Quality->SetInputConnection(last->GetOutputPort());
+  stages.Quality->SetImageData(image);
+  for (vtkCBC3DAlgorithm* stage : std::initializer_list<vtkCBC3DAlgorithm*>{
+         stages.Lattice, stages.Refinement, stages.Deformation, stages.Quality })
+  {
+    SetBackground(stage, options);
+    stage->SetNumberOfThreads(options.Threads);
+  }
+}
+
+// Runs the configured stages one by one (each timed in the report); the measured mesh, or null
+// with `error` when a stage fails or is stopped.
+vtkUnstructuredGrid* RunStages(
+  MeshingStages& stages, const CommandLineOptions& options, bool showProgress, RunReport& report, std::string& error)
+{
+  if (!RunStage(stages.Lattice, "lattice", showProgress, report, error))
+  {
+    return nullptr;
+  }
+  vtkDataArray* edge = stages.Lattice->GetOutput()->GetFieldData()->GetArray(vtkCBC3DArrayNames::LatticeEdgeLength);
+  report.BCCSizeUsed = edge ? edge->GetTuple1(0) : options.BCCSize;
+  if ((options.Fidelity > 0.0 && !RunStage(stages.Refinement, "refinement", showProgress, report, error)) ||
+    (options.Iterations > 0 && !RunStage(stages.Deformation, "deformation", showProgress, report, error)) ||
+    !RunStage(stages.Quality, "quality", showProgress, report, error))
+  {
+    return nullptr;
+  }
+  vtkUnstructuredGrid* mesh = stages.Quality->GetOutput();
+  if (!CollectQuality(mesh, report))
+  {
+    error = "the quality filter produced no figures";
+    return nullptr;
+  }
+  return mesh;
+}
+
 int Run(int argc, char* argv[])
 {
   CommandLineOptions options;
@@ -179,29 +262,16 @@ int Run(int argc, char* argv[])
   {
     return Fail(error, 2);
   }
-  if (options.ShowHelp)
+  if (options.ShowHelp || options.ShowVersion)
   {
-    std::cout << UsageText();
-    return 0;
-  }
-  if (options.ShowVersion)
-  {
-    std::cout << "cbc3d " << CBC3D_VERSION << std::endl;
+    std::cout << (options.ShowHelp ? UsageText() : std::string("cbc3d ") + CBC3D_VERSION + "\n") << std::flush;
     return 0;
   }
   SilenceVtkMessages();
-  // Find out now, not after a long run, that the output cannot be written.
-  std::vector<std::string> written = options.Outputs;
-  written.push_back(options.ReportPath);
-  written.push_back(options.SurfacesPath);
-  for (const std::string& path : written)
+  if (!CanWriteOutputs(options, error))
   {
-    if (!path.empty() && !CanWriteBeside(path, error))
-    {
-      return Fail(error);
-    }
+    return Fail(error);
   }
-
   if (!cbc3d::StartThreads(options.Threads))
   {
     return Fail("out of memory: cannot start " + std::to_string(cbc3d::ThreadCount(options.Threads)) +
@@ -211,7 +281,6 @@ int Run(int argc, char* argv[])
   RunReport report;
   report.Options = options;
   Stopwatch total;
-
   Stopwatch readClock;
   vtkSmartPointer<vtkImageData> image = ReadImageFile(options.Input, error);
   if (!image)
@@ -219,79 +288,16 @@ int Run(int argc, char* argv[])
     return Fail(error);
   }
   report.Seconds.emplace_back("read", readClock.Seconds());
-
-  vtkNew<vtkCBC3DBCCLattice> lattice;
-  lattice->SetInputData(image);
-  lattice->SetEdgeLength(options.BCCSize);
-  SetBackground(lattice, options);
-  lattice->SetNumberOfThreads(options.Threads);
-  if (!RunStage(lattice, "lattice", showProgress, report, error))
-  {
-    return Fail(error);
-  }
-  vtkDataArray* edge =
-    lattice->GetOutput()->GetFieldData()->GetArray(vtkCBC3DArrayNames::LatticeEdgeLength);
-  report.BCCSizeUsed = edge ? edge->GetTuple1(0) : options.BCCSize;
-
-  vtkAlgorithm* mesher = lattice;
-  vtkNew<vtkCBC3DRefinement> refinement;
-  if (options.Fidelity > 0.0)
-  {
-    refinement->SetInputConnection(lattice->GetOutputPort());
-    refinement->SetImageData(image);
-    refinement->SetFidelity(options.Fidelity);
-    refinement->SetBoundaryDistance(options.BoundaryDistance);
-    SetBackground(refinement, options);
-    refinement->SetNumberOfThreads(options.Threads);
-    if (!RunStage(refinement, "refinement", showProgress, report, error))
-    {
-      return Fail(error);
-    }
-    mesher = refinement;
-  }
-
-  vtkNew<vtkCBC3DDeformation> deformation;
-  if (options.Iterations > 0)
-  {
-    deformation->SetInputConnection(mesher->GetOutputPort());
-    deformation->SetImageData(image);
-    deformation->SetIterations(options.Iterations);
-    deformation->SetPattern(PatternValue(options.Pattern));
-    deformation->SetTargetPlacement(
-      options.Targets == "face" ? vtkCBC3DDeformation::VOXEL_FACE : vtkCBC3DDeformation::VOXEL_CENTRE);
-    deformation->SetKeepVolumes(options.KeepVolumes);
-    SetBackground(deformation, options);
-    deformation->SetNumberOfThreads(options.Threads);
-    if (!RunStage(deformation, "deformation", showProgress, report, error))
-    {
-      return Fail(error);
-    }
-    mesher = deformation;
-  }
-
-  vtkNew<vtkCBC3DMeshQuality> quality;
-  quality->SetInputConnection(mesher->GetOutputPort());
-  quality->SetImageData(image);
-  SetBackground(quality, options);
-  quality->SetNumberOfThreads(options.Threads);
-  if (!RunStage(quality, "quality", showProgress, report, error))
-  {
-    return Fail(error);
-  }
-  vtkUnstructuredGrid* mesh = quality->GetOutput();
-  if (!CollectQuality(mesh, report))
-  {
-    return Fail("the quality filter produced no figures");
-  }
-
+  MeshingStages stages;
+  ConfigureStages(stages, image, options);
+  vtkUnstructuredGrid* mesh = RunStages(stages, options, showProgress, report, error);
   Stopwatch writeClock;
-  if (!WriteOutputs(mesh, options, report, error))
+  if (!mesh || !WriteOutputs(mesh, options, report, error))
   {
     return Fail(error);
   }
   report.Seconds.emplace_back("write", writeClock.Seconds());
   report.Seconds.emplace_back("total", total.Seconds());
-
   if (!options.ReportPath.empty() && !WriteTextFile(FormatJson(report), options.ReportPath, error))
   {
     return Fail(error);
