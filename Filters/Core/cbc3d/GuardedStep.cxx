@@ -13,7 +13,8 @@ std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::
   const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
   std::vector<char> bad(count, 0);
   const double largestCosine = std::cos(minimumRadians); // DihedralAnglesWithin's test, its cosine once
-#pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
+  // Dynamic: the tets around the moved points cluster, and a static half may hold them all.
+#pragma omp parallel for schedule(dynamic, 1024) num_threads(ThreadCount(threads))
   for (std::int64_t t = 0; t < count; ++t)
   {
     const Tet& tet = mesh.Tets[t];
