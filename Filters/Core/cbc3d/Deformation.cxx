@@ -1,5 +1,6 @@
 #include "cbc3d/Deformation.h"
 
+#include "cbc3d/ElasticStep.h"
 #include "cbc3d/FidelityGuard.h"
 #include "cbc3d/GuardedStep.h"
 #include "cbc3d/InteriorSmoothing.h"
@@ -12,7 +13,6 @@
 #include "cbc3d/TissueVolumes.h"
 
 #include <Eigen/Geometry>
-#include <Eigen/IterativeLinearSolvers>
 
 #include <algorithm>
 #include <atomic>
@@ -91,30 +91,8 @@ public:
     , Reach(mesh.Points.size())
     , Search(mesh.Points.size())
     , Interior(mesh.Points.size(), 1)
-    , Du(Eigen::VectorXd::Zero(stiffness.rows()))
+    , Elastic(stiffness)
   {
-    // Each step's system is the stiffness plus springs on its diagonal: the matrix is taken
-    // over (swapped: Eigen 3.4's sparse matrix has no move), and only its diagonal is written
-    // again for each step, from the stiffness's own.
-    this->System.swap(stiffness);
-    this->System.makeCompressed();
-    for (Eigen::Index i = 0; i < this->System.rows(); ++i)
-    {
-      this->Diagonal.push_back(&this->System.coeffRef(i, i));
-      this->StiffnessDiagonal.push_back(*this->Diagonal.back());
-    }
-    // (K + P) du = P d: K the stiffness, P the springs tying each matched source to its goal.
-    // Conjugate gradients with a diagonal preconditioner, warm-started from the previous step.
-    // (Measured on the brain and the k-means head: twice as fast as an incomplete-Cholesky
-    // preconditioner, in less memory and to the same result; a sparse direct factorisation was
-    // 20 times slower: 3-D meshes fill in badly.)
-    // A relative residual of 1e-4, not 1e-6: the step is only a proposal that the guard scales
-    // and the next iteration corrects. Measured on every shared image at both settings: the
-    // same tets, Hausdorff distances, volumes and topology, angles within 0.11 degrees of the
-    // 1e-6 meshes' (all within the bound), and less than half the iterations (brain: 15-22
-    // against 40-49 a solve).
-    this->Solver.setTolerance(1e-4);
-    this->Solver.setMaxIterations(50); // per call: the solve runs in chunks so that a stop is seen soon
     // How far from the image a vertex may lie before it is steered, and how far it looks.
     for (std::size_t p = 0; p < mesh.Points.size(); ++p)
     {
@@ -143,14 +121,15 @@ public:
     this->SteerFarthest(goals, matched);
     Eigen::VectorXd rhs, springs;
     moved = this->SpringLoads(x, goals, matched, rhs, springs);
-    if (stops.Stopped(done) || !this->SolveElasticStep(rhs, springs, stops, done))
+    // (Stopped(done) first: the solve's KeepGoing reports this iteration's fraction.)
+    if (stops.Stopped(done) || !this->Elastic.Solve(springs, rhs, this->Params.NumberOfThreads, stops.KeepGoing))
     {
       return StepOutcome::Aborted;
     }
     std::vector<Eigen::Vector3d> trial;
     std::vector<double> share;
     const StepOutcome outcome = GuardedStep(this->Mesh, x,
-      [&](std::size_t p) { return Eigen::Vector3d(this->Du.segment<3>(3 * p)); }, this->Bound,
+      [&](std::size_t p) { return this->Elastic.Displacement(p); }, this->Bound,
       this->Params.NumberOfThreads, this->Fidelity, stops.KeepGoing, trial, share);
     if (outcome == StepOutcome::Aborted || stops.Stopped())
     {
@@ -244,8 +223,8 @@ private:
   double SpringLoads(const std::vector<Eigen::Vector3d>& x, const std::vector<Eigen::Vector3d>& goals,
     const std::vector<char>& matched, Eigen::VectorXd& rhs, Eigen::VectorXd& springs) const
   {
-    rhs = Eigen::VectorXd::Zero(this->System.rows());
-    springs = Eigen::VectorXd::Zero(this->System.rows());
+    rhs = Eigen::VectorXd::Zero(this->Elastic.Size());
+    springs = Eigen::VectorXd::Zero(this->Elastic.Size());
     const std::int64_t sourceCount = static_cast<std::int64_t>(this->Sources.Points.size());
     double moved = 0.0;
 #pragma omp parallel for schedule(dynamic, 64) reduction(+ : moved) num_threads(ThreadCount(this->Params.NumberOfThreads))
@@ -255,7 +234,7 @@ private:
       const double size = this->Sources.LocalSize[p];
       for (int c = 0; c < 3; ++c)
       {
-        springs[3 * p + c] = this->Params.Penalty * this->StiffnessDiagonal[3 * p + c];
+        springs[3 * p + c] = this->Params.Penalty * this->Elastic.DiagonalStiffness(3 * p + c);
       }
       if (!matched[s])
       {
@@ -277,36 +256,6 @@ private:
       }
     }
     return moved;
-  }
-
-  // Solves (K + P) du = P d into Du, in chunks; false when stopped.
-  bool SolveElasticStep(const Eigen::VectorXd& rhs, const Eigen::VectorXd& springs, StopRequests& stops, double done)
-  {
-    // A faint anchor on every point keeps pieces of the mesh that no spring holds (a small
-    // component with no match) in place, where the bare stiffness would let them float.
-    for (std::size_t i = 0; i < this->Diagonal.size(); ++i)
-    {
-      *this->Diagonal[i] = this->StiffnessDiagonal[i] + (springs[i] + 1e-6 * this->StiffnessDiagonal[i]);
-    }
-    if (stops.Stopped(done))
-    {
-      return false;
-    }
-    const ScopedEigenThreads threads(this->Params.NumberOfThreads);
-    this->Solver.compute(this->System);
-    for (int chunk = 0; chunk < 20; ++chunk)
-    {
-      this->Du = this->Solver.solveWithGuess(rhs, this->Du);
-      if (this->Solver.info() == Eigen::Success)
-      {
-        break;
-      }
-      if (stops.Stopped(done))
-      {
-        return false;
-      }
-    }
-    return true;
   }
 
   // Interior vertices around the held ones make room for them on the next step.
@@ -335,14 +284,8 @@ private:
   const InteriorSmoothing Smoothing;
   std::vector<double> Reach, Search; // per point: when it is steered, and how far it looks
   std::vector<char> Interior;        // per point: not a source
-  Eigen::VectorXd Du;                // the last elastic step (the next solve starts from it)
-  Eigen::SparseMatrix<double> System; // the stiffness, its diagonal with the last step's springs added
-  std::vector<double*> Diagonal;      // System's diagonal entries
-  std::vector<double> StiffnessDiagonal;
+  ElasticStep Elastic;
   Eigen::Isometry3d Placement = Eigen::Isometry3d::Identity(); // the rigid moves so far
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
-    Eigen::DiagonalPreconditioner<double>>
-    Solver;
 };
 
 // A rigid fit that moves no point farther than this ends its loop: 1% of the smallest surface

@@ -1,5 +1,6 @@
 #include "cbc3d/BCCLattice.h"
 #include "cbc3d/Deformation.h"
+#include "cbc3d/ElasticStep.h"
 #include "cbc3d/Parallel.h"
 #include "cbc3d/LinearElasticity.h"
 #include "cbc3d/Refinement.h"
@@ -124,6 +125,47 @@ TEST(LinearElasticity, StopsWhenAsked)
   const Eigen::SparseMatrix<double> k =
     cbc3d::AssembleStiffness(Cube(), {}, cbc3d::Material(), 1, [](double) { return false; });
   EXPECT_EQ(k.rows(), 0);
+}
+
+TEST(ElasticStep, SpringsEverywhereTranslateTheMeshAndTheSolveMeetsItsSystem)
+{
+  const cbc3d::TetMesh mesh = Cube();
+  Eigen::SparseMatrix<double> k = cbc3d::AssembleStiffness(mesh, {}, cbc3d::Material{ 3.0, 0.25 }, 1);
+  const Eigen::SparseMatrix<double> stiffness = k;
+  cbc3d::ElasticStep step(k);
+  EXPECT_EQ(k.rows(), 0); // taken over, not copied
+  ASSERT_EQ(step.Size(), 24);
+  // Every point pulled the same way: a translation strains nothing, so it is the answer (but
+  // for the faint anchor, a millionth of the stiffness's diagonal).
+  const Eigen::Vector3d d(0.3, -1.0, 2.0);
+  Eigen::VectorXd springs(24), loads(24);
+  for (Eigen::Index i = 0; i < 24; ++i)
+  {
+    EXPECT_EQ(step.DiagonalStiffness(i), stiffness.coeff(i, i));
+    springs[i] = step.DiagonalStiffness(i);
+    loads[i] = springs[i] * d[i % 3];
+  }
+  ASSERT_TRUE(step.Solve(springs, loads, 2, [] { return true; }));
+  for (std::size_t p = 0; p < 8; ++p)
+    EXPECT_LT((step.Displacement(p) - d).norm(), 1e-3 * d.norm()) << "point " << p;
+  // The bottom held, the top pulled up: the solve meets (K + P + anchor) u = P d to its tolerance.
+  for (Eigen::Index i = 0; i < 24; ++i)
+  {
+    const Eigen::Vector3d& x = mesh.Points[i / 3];
+    springs[i] = x[2] == 0.0 || x[2] == 2.0 ? 10.0 * stiffness.coeff(i, i) : 0.0;
+    loads[i] = x[2] == 2.0 && i % 3 == 2 ? springs[i] * 0.1 : 0.0;
+  }
+  ASSERT_TRUE(step.Solve(springs, loads, 1, [] { return true; }));
+  Eigen::VectorXd u(24);
+  for (std::size_t p = 0; p < 8; ++p)
+    u.segment<3>(3 * p) = step.Displacement(p);
+  const Eigen::VectorXd anchored = springs + 1e-6 * stiffness.diagonal();
+  const Eigen::VectorXd residual = stiffness * u + anchored.cwiseProduct(u) - loads;
+  EXPECT_LT(residual.norm(), 1e-4 * loads.norm());
+  EXPECT_GT(u[3 * 7 + 2], 0.0); // the top corner rose
+  // A stop at the first poll leaves the last step as it was.
+  EXPECT_FALSE(step.Solve(springs, 2.0 * loads, 1, [] { return false; }));
+  EXPECT_EQ(step.Displacement(7), Eigen::Vector3d(u.segment<3>(21)));
 }
 
 TEST(Deformation, StopsAtEveryPollAssemblyIncluded)
