@@ -100,7 +100,46 @@ struct Violation
 {
   bool Split = false;     // the class is in several parts (else: its complement is)
   std::int32_t Class = 0;
+  // Scratch of the search, kept between searches: stars are searched by the million.
+  std::vector<int> Component, Stack;
+  std::vector<std::pair<std::int32_t, int>> Parts; // (class, its parts), ascending class
 };
+
+// Numbers the parts of every class at once (nodes joined through links to nodes of their own
+// class) into `found.Component`, and counts each class's parts into `found.Parts`.
+void CountClassParts(const Star& star, Violation& found)
+{
+  found.Component.assign(star.Nodes(), -1);
+  found.Parts.clear();
+  int count = 0;
+  for (int seed = 0; seed < star.Nodes(); ++seed)
+  {
+    if (found.Component[seed] >= 0)
+      continue;
+    const std::int32_t cls = star.Class[seed];
+    found.Component[seed] = count;
+    found.Stack.assign(1, seed);
+    while (!found.Stack.empty())
+    {
+      const int node = found.Stack.back();
+      found.Stack.pop_back();
+      for (const int next : star.Links[node])
+      {
+        if (found.Component[next] < 0 && star.Class[next] == cls)
+        {
+          found.Component[next] = count;
+          found.Stack.push_back(next);
+        }
+      }
+    }
+    ++count;
+    const auto at = std::lower_bound(found.Parts.begin(), found.Parts.end(), std::make_pair(cls, 0));
+    if (at != found.Parts.end() && at->first == cls)
+      ++at->second;
+    else
+      found.Parts.insert(at, { cls, 1 });
+  }
+}
 
 class Repairer
 {
@@ -372,23 +411,30 @@ bool Repairer::FindViolation(const Star& star, Violation& found) const
   {
     return false;
   }
-  std::vector<std::int32_t> present(star.Class);
-  std::sort(present.begin(), present.end());
-  present.erase(std::unique(present.begin(), present.end()), present.end());
-  std::vector<int> component;
-  // Split classes first: joining or trimming them often mends a ring too.
-  for (const bool split : { true, false })
+  // Split classes first (the smallest label first): joining or trimming them often mends a ring too.
+  CountClassParts(star, found);
+  for (const auto& [cls, parts] : found.Parts)
   {
-    for (const std::int32_t cls : present)
+    if (parts > 1)
     {
-      const int parts = Components(
-        star, [&](int node) { return (star.Class[node] == cls) == split; }, component);
-      if (parts > 1)
-      {
-        found.Split = split;
-        found.Class = cls;
-        return true;
-      }
+      found.Split = true;
+      found.Class = cls;
+      return true;
+    }
+  }
+  // A class's complement is the other classes' nodes: with two classes, the other one, whole.
+  if (found.Parts.size() <= 2)
+  {
+    return false;
+  }
+  for (const auto& [cls, parts] : found.Parts)
+  {
+    const std::int32_t ring = cls;
+    if (Components(star, [&](int node) { return star.Class[node] != ring; }, found.Component) > 1)
+    {
+      found.Split = false;
+      found.Class = cls;
+      return true;
     }
   }
   return false;
