@@ -1,15 +1,10 @@
 #include "cbc3d/ManifoldRepair.h"
 
-#include "cbc3d/DisjointSets.h"
 #include "cbc3d/ImageRegions.h"
-#include "cbc3d/MeshFaces.h"
 #include "cbc3d/Parallel.h"
-#include "cbc3d/PointTets.h"
-
-#include <Eigen/Geometry>
+#include "cbc3d/VertexStar.h"
 
 #include <algorithm>
-#include <cmath>
 #include <deque>
 #include <limits>
 #include <map>
@@ -35,112 +30,6 @@ constexpr int VisitsBeforeRankedFallback = 6;
 constexpr std::size_t JoinSearchTets = 2000;
 constexpr std::size_t BackgroundJoinSearchTets = 3000;
 
-// The tets around one vertex as a graph: two are linked when they share a face through the
-// vertex. Each face on the mesh boundary through the vertex is an outside node, linked to its
-// tet and to the outside faces next to it across the gap it bounds (the mesh need not be
-// convex: the lattice leaves out tets with no tissue).
-struct Star
-{
-  std::vector<std::int64_t> Tets;      // node i < Tets.size() is tet Tets[i]; then outside nodes
-  std::vector<std::vector<int>> Links; // per node, its linked nodes
-  std::vector<std::int32_t> Class;     // per node
-
-  int Nodes() const { return static_cast<int>(this->Class.size()); } // Links may hold more
-  bool IsTet(int node) const { return node < static_cast<int>(this->Tets.size()); }
-};
-
-// An outside face through the star's vertex v: its node, its tet's node and its far vertices.
-struct OutsideFace
-{
-  int Node, Tet;
-  PointId Far[2];
-};
-
-// Components of the nodes for which `member` holds; returns their count, fills `component`
-// (-1 for non-members), numbered in node order.
-template <typename Member>
-int Components(const Star& star, Member member, std::vector<int>& component)
-{
-  component.assign(star.Nodes(), -1);
-  int count = 0;
-  std::vector<int> stack;
-  for (int seed = 0; seed < star.Nodes(); ++seed)
-  {
-    if (component[seed] >= 0 || !member(seed))
-    {
-      continue;
-    }
-    component[seed] = count;
-    stack.assign(1, seed);
-    while (!stack.empty())
-    {
-      const int node = stack.back();
-      stack.pop_back();
-      for (const int next : star.Links[node])
-      {
-        if (component[next] < 0 && member(next))
-        {
-          component[next] = count;
-          stack.push_back(next);
-        }
-      }
-    }
-    ++count;
-  }
-  return count;
-}
-
-void LinkNodes(Star& star, int a, int b)
-{
-  star.Links[a].push_back(b);
-  star.Links[b].push_back(a);
-}
-
-struct Violation
-{
-  bool Split = false;     // the class is in several parts (else: its complement is)
-  std::int32_t Class = 0;
-  // Scratch of the search, kept between searches: stars are searched by the million.
-  std::vector<int> Component, Stack;
-  std::vector<std::pair<std::int32_t, int>> Parts; // (class, its parts), ascending class
-};
-
-// Numbers the parts of every class at once (nodes joined through links to nodes of their own
-// class) into `found.Component`, and counts each class's parts into `found.Parts`.
-void CountClassParts(const Star& star, Violation& found)
-{
-  found.Component.assign(star.Nodes(), -1);
-  found.Parts.clear();
-  int count = 0;
-  for (int seed = 0; seed < star.Nodes(); ++seed)
-  {
-    if (found.Component[seed] >= 0)
-      continue;
-    const std::int32_t cls = star.Class[seed];
-    found.Component[seed] = count;
-    found.Stack.assign(1, seed);
-    while (!found.Stack.empty())
-    {
-      const int node = found.Stack.back();
-      found.Stack.pop_back();
-      for (const int next : star.Links[node])
-      {
-        if (found.Component[next] < 0 && star.Class[next] == cls)
-        {
-          found.Component[next] = count;
-          found.Stack.push_back(next);
-        }
-      }
-    }
-    ++count;
-    const auto at = std::lower_bound(found.Parts.begin(), found.Parts.end(), std::make_pair(cls, 0));
-    if (at != found.Parts.end() && at->first == cls)
-      ++at->second;
-    else
-      found.Parts.insert(at, { cls, 1 });
-  }
-}
-
 class Repairer
 {
 public:
@@ -148,10 +37,9 @@ public:
     const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
     const ClassVotes& votes, std::vector<std::int32_t>& classes,
     const std::vector<std::int32_t>& backgroundRegionOfTet = {})
-    : PointList(points)
-    , TetList(tets)
+    : TetList(tets)
     , Across(across)
-    , Stars(tets, points.size())
+    , Loader(points, tets, across, background, classes)
     , Background(background)
     , Votes(votes)
     , Classes(classes)
@@ -162,29 +50,28 @@ public:
       ++this->TetsOfClass[cls];
   }
 
-  void Load(PointId v, Star& star) { this->Load(v, star, this->LocalOf); }
+  void Load(PointId v, VertexStar& star) { this->Loader.Load(v, star, this->LocalOf); }
   /// The same with the caller's tet -> node scratch (all -1, and left so): for other threads.
-  void Load(PointId v, Star& star, std::vector<int>& localOf) const;
-  int CoveredPieces(PointId v, const Star& star) const;
-  void LinkOutside(PointId v, Star& star, const std::vector<OutsideFace>& outside) const;
-  void LinkAroundEdge(PointId v, PointId w, Star& star, const std::vector<OutsideFace>& outside,
-    std::vector<int>& ends) const;
-  bool FindViolation(const Star& star, Violation& found) const;
-  bool IsUniform(PointId v) const;
+  void Load(PointId v, VertexStar& star, std::vector<int>& localOf) const { this->Loader.Load(v, star, localOf); }
+  bool FindViolation(const VertexStar& star, StarViolation& found) const
+  {
+    return FindStarViolation(star, this->Background, found);
+  }
+  bool IsUniform(PointId v) const { return this->Loader.IsUniform(v); }
   std::size_t TetCount() const { return this->TetList.size(); }
   void RepairStar(PointId v, int visit, std::vector<std::int64_t>& changed, ManifoldRepairResult& result);
 
 private:
-  std::int64_t VotesOf(const Star& star, int node, std::int32_t cls) const
+  std::int64_t VotesOf(const VertexStar& star, int node, std::int32_t cls) const
   {
     return star.IsTet(node) ? this->Votes(star.Tets[node], cls) : OutsideVotes;
   }
   // The outside, and the tets a last resort left to it, cannot change class.
-  bool Changeable(const Star& star, int node) const
+  bool Changeable(const VertexStar& star, int node) const
   {
     return star.IsTet(node) && (this->Frozen.empty() || !this->Frozen[star.Tets[node]]);
   }
-  std::int64_t Cost(const Star& star, int node, std::int32_t to) const
+  std::int64_t Cost(const VertexStar& star, int node, std::int32_t to) const
   {
     if (!this->Changeable(star, node))
     {
@@ -192,33 +79,32 @@ private:
     }
     return this->VotesOf(star, node, star.Class[node]) - this->VotesOf(star, node, to);
   }
-  std::int64_t Path(const Star& star, const std::vector<int>& from, const std::vector<char>& through,
+  std::int64_t Path(const VertexStar& star, const std::vector<int>& from, const std::vector<char>& through,
     const std::vector<char>& goal, std::int32_t to, std::vector<int>& path) const;
-  void Relabel(Star& star, int node, std::int32_t to, std::vector<std::int64_t>& changed);
-  bool JoinedNearby(const Star& star, const std::vector<int>& part, int keeper, int spare, std::int32_t cls);
-  bool GivingJoinsNearby(const Star& star, const std::vector<std::int32_t>& receivers,
+  void Relabel(VertexStar& star, int node, std::int32_t to, std::vector<std::int64_t>& changed);
+  bool JoinedNearby(const VertexStar& star, const std::vector<int>& part, int keeper, int spare, std::int32_t cls);
+  bool GivingJoinsNearby(const VertexStar& star, const std::vector<std::int32_t>& receivers,
     const std::vector<std::pair<int, std::int32_t>>& giveAway);
-  std::vector<int> TouchedParts(const Star& star, const std::vector<int>& part, std::int32_t to,
+  std::vector<int> TouchedParts(const VertexStar& star, const std::vector<int>& part, std::int32_t to,
     const std::vector<std::pair<int, std::int32_t>>& giveAway) const;
-  std::vector<std::int32_t> RegionsOfPart(const Star& star, const std::vector<int>& part, int which) const;
-  bool KeptApart(const Star& star, const std::vector<int>& part, int a, int b) const;
-  bool GivingOpensCavity(const Star& star, const std::vector<std::pair<int, std::int32_t>>& giveAway) const;
-  std::int64_t PlanGiveAway(const Star& star, const std::vector<int>& part, int spare, std::int32_t cls,
+  std::vector<std::int32_t> RegionsOfPart(const VertexStar& star, const std::vector<int>& part, int which) const;
+  bool KeptApart(const VertexStar& star, const std::vector<int>& part, int a, int b) const;
+  bool GivingOpensCavity(const VertexStar& star, const std::vector<std::pair<int, std::int32_t>>& giveAway) const;
+  std::int64_t PlanGiveAway(const VertexStar& star, const std::vector<int>& part, int spare, std::int32_t cls,
     std::vector<std::int32_t>& alternatives, std::vector<std::pair<int, std::int32_t>>& giveAway) const;
-  void RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed);
-  void RepairRing(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed);
-  void Unify(Star& star, bool byRank, std::vector<std::int64_t>& changed);
+  void RepairSplit(VertexStar& star, std::int32_t cls, std::vector<std::int64_t>& changed);
+  void RepairRing(VertexStar& star, std::int32_t cls, std::vector<std::int64_t>& changed);
+  void Unify(VertexStar& star, bool byRank, std::vector<std::int64_t>& changed);
 
-  const std::vector<Eigen::Vector3d>& PointList;
   const std::vector<Tet>& TetList;
   const std::vector<std::array<std::int64_t, 4>>& Across;
-  PointTets Stars;
+  StarLoader Loader;
   std::int32_t Background;
   const ClassVotes& Votes;
   std::vector<std::int32_t>& Classes;
   const std::vector<std::int32_t>& RegionOfTet; // empty: the image has no cavity to keep
   std::vector<int> LocalOf; // scratch: tet -> its node in the star being loaded
-  Star Scratch;             // the star being repaired
+  VertexStar Scratch;             // the star being repaired
   std::map<std::int32_t, std::int64_t> TetsOfClass; // at the start: the last resort's ranks
   // Tets of stars where the mesh itself pinches, left to the background for good by the last
   // resort (empty until then): a neighbour taking them back would make the pinch again.
@@ -231,218 +117,10 @@ private:
   }
 };
 
-// One class all round, and no tissue meeting the mesh boundary (where the gaps could pinch).
-bool Repairer::IsUniform(PointId v) const
-{
-  const std::int64_t first = this->Stars.Start[v], last = this->Stars.Start[v + 1];
-  if (first == last)
-  {
-    return true;
-  }
-  const std::int32_t cls = this->Classes[this->Stars.Tets[first]];
-  for (std::int64_t i = first; i < last; ++i)
-  {
-    const std::int64_t t = this->Stars.Tets[i];
-    if (this->Classes[t] != cls)
-    {
-      return false;
-    }
-    if (cls != this->Background)
-      for (int j = 0; j < 4; ++j)
-        if (this->TetList[t][j] != v && this->Across[t][j] < 0)
-          return false;
-  }
-  return true;
-}
-
-void Repairer::Load(PointId v, Star& star, std::vector<int>& localOf) const
-{
-  const std::int64_t first = this->Stars.Start[v], last = this->Stars.Start[v + 1];
-  star.Tets.assign(this->Stars.Tets.begin() + first, this->Stars.Tets.begin() + last);
-  const int n = static_cast<int>(star.Tets.size());
-  // The star is scratch reused from vertex to vertex: its lists keep their memory.
-  if (star.Links.size() < std::size_t(n))
-    star.Links.resize(n);
-  for (int i = 0; i < n; ++i)
-    star.Links[i].clear();
-  star.Class.resize(n);
-  for (int i = 0; i < n; ++i)
-  {
-    localOf[star.Tets[i]] = i;
-    star.Class[i] = this->Classes[star.Tets[i]];
-  }
-  std::vector<OutsideFace> outside;
-  for (int i = 0; i < n; ++i)
-  {
-    const Tet& tet = this->TetList[star.Tets[i]];
-    for (int j = 0; j < 4; ++j)
-    {
-      if (tet[j] == v)
-      {
-        continue; // the face opposite v does not pass through it
-      }
-      const std::int64_t neighbour = this->Across[star.Tets[i]][j];
-      if (neighbour >= 0)
-      {
-        star.Links[i].push_back(localOf[neighbour]);
-        continue;
-      }
-      OutsideFace face{ star.Nodes(), i, { -1, -1 } };
-      for (int k = 0, f = 0; k < 4; ++k)
-        if (k != j && tet[k] != v)
-          face.Far[f++] = tet[k];
-      star.Class.push_back(this->Background);
-      if (star.Links.size() < star.Class.size())
-        star.Links.emplace_back();
-      star.Links[face.Node].assign(1, i);
-      star.Links[i].push_back(face.Node);
-      outside.push_back(face);
-    }
-  }
-  this->LinkOutside(v, star, outside);
-  if (!outside.empty() && this->CoveredPieces(v, star) > 1)
-  {
-    // The mesh itself pinches at v: its pieces there are islands in one gap around them.
-    for (std::size_t f = 1; f < outside.size(); ++f)
-      LinkNodes(star, outside[f - 1].Node, outside[f].Node);
-  }
-  for (const std::int64_t t : star.Tets)
-  {
-    localOf[t] = -1;
-  }
-}
-
-// The pieces of the mesh around v: its tets joined through shared edges or faces through v.
-int Repairer::CoveredPieces(PointId v, const Star& star) const
-{
-  std::vector<PointId> far;
-  for (const std::int64_t t : star.Tets)
-    for (const PointId p : this->TetList[t])
-      if (p != v)
-        far.push_back(p);
-  std::sort(far.begin(), far.end());
-  far.erase(std::unique(far.begin(), far.end()), far.end());
-  DisjointSets pieces(far.size());
-  auto index = [&](PointId p) { return std::lower_bound(far.begin(), far.end(), p) - far.begin(); };
-  int count = static_cast<int>(far.size());
-  for (const std::int64_t t : star.Tets)
-  {
-    std::int64_t first = -1;
-    for (const PointId p : this->TetList[t])
-    {
-      if (p == v)
-        continue;
-      if (first < 0)
-        first = index(p);
-      else if (pieces.Find(first) != pieces.Find(index(p)))
-      {
-        pieces.Join(first, index(p));
-        --count;
-      }
-    }
-  }
-  return count;
-}
-
-// Links the outside faces that bound one gap: around each edge (v, w) the tets form chains
-// whose ends are outside faces; going round the edge, two consecutive ends of different chains
-// (or the two ends of the only chain) face the same gap.
-void Repairer::LinkOutside(PointId v, Star& star, const std::vector<OutsideFace>& outside) const
-{
-  std::vector<std::pair<PointId, int>> byEdge; // (w, index in outside)
-  for (int f = 0; f < static_cast<int>(outside.size()); ++f)
-    for (const PointId w : outside[f].Far)
-      byEdge.emplace_back(w, f);
-  std::sort(byEdge.begin(), byEdge.end());
-  for (std::size_t a = 0; a < byEdge.size();)
-  {
-    std::size_t b = a;
-    while (b < byEdge.size() && byEdge[b].first == byEdge[a].first)
-      ++b;
-    std::vector<int> ends;
-    for (std::size_t e = a; e < b; ++e)
-      ends.push_back(byEdge[e].second);
-    if (ends.size() == 2)
-      LinkNodes(star, outside[ends[0]].Node, outside[ends[1]].Node);
-    else if (ends.size() > 2)
-      this->LinkAroundEdge(v, byEdge[a].first, star, outside, ends);
-    a = b;
-  }
-}
-
-// Where the mesh pinches along the edge (v, w), the ends are ordered by their angle about it.
-void Repairer::LinkAroundEdge(PointId v, PointId w, Star& star,
-  const std::vector<OutsideFace>& outside, std::vector<int>& ends) const
-{
-  const Eigen::Vector3d axis = (this->PointList[w] - this->PointList[v]).normalized();
-  const Eigen::Vector3d u = axis.unitOrthogonal(), t = axis.cross(u);
-  auto angle = [&](int f) {
-    const OutsideFace& face = outside[f];
-    const PointId x = face.Far[0] == w ? face.Far[1] : face.Far[0];
-    const Eigen::Vector3d d = this->PointList[x] - this->PointList[v];
-    return std::atan2(d.dot(t), d.dot(u));
-  };
-  std::sort(ends.begin(), ends.end(), [&](int a, int b) { return angle(a) < angle(b); });
-  // The chain of each end: the tets containing w, joined through faces containing w.
-  std::vector<int> chain;
-  Components(
-    star,
-    [&](int node) {
-      // Outside-face nodes come after the tets: only a tet node may index star.Tets.
-      if (!star.IsTet(node))
-        return false;
-      const Tet& tet = this->TetList[star.Tets[node]];
-      return std::find(tet.begin(), tet.end(), w) != tet.end();
-    },
-    chain);
-  const std::size_t count = ends.size();
-  for (std::size_t e = 0; e < count; ++e)
-  {
-    const int a = ends[e], b = ends[(e + 1) % count];
-    if (chain[outside[a].Tet] != chain[outside[b].Tet])
-      LinkNodes(star, outside[a].Node, outside[b].Node);
-  }
-}
-
-bool Repairer::FindViolation(const Star& star, Violation& found) const
-{
-  // Where no tissue is, the mesh has nothing (the gaps of the lattice may pinch there).
-  if (std::all_of(star.Class.begin(), star.Class.end(), [&](std::int32_t c) { return c == this->Background; }))
-  {
-    return false;
-  }
-  // Split classes first (the smallest label first): joining or trimming them often mends a ring too.
-  CountClassParts(star, found);
-  for (const auto& [cls, parts] : found.Parts)
-  {
-    if (parts > 1)
-    {
-      found.Split = true;
-      found.Class = cls;
-      return true;
-    }
-  }
-  // A class's complement is the other classes' nodes: with two classes, the other one, whole.
-  if (found.Parts.size() <= 2)
-  {
-    return false;
-  }
-  for (const auto& [cls, parts] : found.Parts)
-  {
-    const std::int32_t ring = cls;
-    if (Components(star, [&](int node) { return star.Class[node] != ring; }, found.Component) > 1)
-    {
-      found.Split = false;
-      found.Class = cls;
-      return true;
-    }
-  }
-  return false;
-}
 
 // The cheapest path of `through` nodes from the `from` nodes to a node linked to a `goal` node,
 // each step costing the node's relabelling to `to`; fills `path` (without the ends).
-std::int64_t Repairer::Path(const Star& star, const std::vector<int>& from,
+std::int64_t Repairer::Path(const VertexStar& star, const std::vector<int>& from,
   const std::vector<char>& through, const std::vector<char>& goal, std::int32_t to,
   std::vector<int>& path) const
 {
@@ -491,7 +169,7 @@ std::int64_t Repairer::Path(const Star& star, const std::vector<int>& from,
   return Unreachable;
 }
 
-void Repairer::Relabel(Star& star, int node, std::int32_t to, std::vector<std::int64_t>& changed)
+void Repairer::Relabel(VertexStar& star, int node, std::int32_t to, std::vector<std::int64_t>& changed)
 {
   if (!this->Changeable(star, node))
   {
@@ -504,7 +182,7 @@ void Repairer::Relabel(Star& star, int node, std::int32_t to, std::vector<std::i
 
 // Whether the class's tets join the spare part to the keeper through faces within a short walk
 // (a bounded breadth-first search from the spare part's tets).
-bool Repairer::JoinedNearby(const Star& star, const std::vector<int>& part, int keeper, int spare,
+bool Repairer::JoinedNearby(const VertexStar& star, const std::vector<int>& part, int keeper, int spare,
   std::int32_t cls)
 {
   constexpr int Visited = -2, Goal = -3;
@@ -544,7 +222,7 @@ bool Repairer::JoinedNearby(const Star& star, const std::vector<int>& part, int 
 
 // The parts (`part`: of class `to` around the vertex) next to the tets that `giveAway` gives to
 // `to`, sorted.
-std::vector<int> Repairer::TouchedParts(const Star& star, const std::vector<int>& part, std::int32_t to,
+std::vector<int> Repairer::TouchedParts(const VertexStar& star, const std::vector<int>& part, std::int32_t to,
   const std::vector<std::pair<int, std::int32_t>>& giveAway) const
 {
   std::vector<int> touched;
@@ -564,13 +242,13 @@ std::vector<int> Repairer::TouchedParts(const Star& star, const std::vector<int>
 // Whether giving tets away (each node to its class in `giveAway`, one of `receivers`) would
 // join two parts of a receiving class around the vertex that the class already joins nearby:
 // close a loop in it.
-bool Repairer::GivingJoinsNearby(const Star& star, const std::vector<std::int32_t>& receivers,
+bool Repairer::GivingJoinsNearby(const VertexStar& star, const std::vector<std::int32_t>& receivers,
   const std::vector<std::pair<int, std::int32_t>>& giveAway)
 {
   for (const std::int32_t to : receivers)
   {
     std::vector<int> part;
-    if (Components(star, [&](int node) { return star.Class[node] == to; }, part) < 2)
+    if (StarComponents(star, [&](int node) { return star.Class[node] == to; }, part) < 2)
       continue;
     const std::vector<int> touched = this->TouchedParts(star, part, to, giveAway);
     for (std::size_t i = 1; i < touched.size(); ++i)
@@ -582,7 +260,7 @@ bool Repairer::GivingJoinsNearby(const Star& star, const std::vector<std::int32_
 
 // The image's background components (kept cavities, or the outside) that the tets of one part
 // stand for, sorted: none where the image has no cavity to keep.
-std::vector<std::int32_t> Repairer::RegionsOfPart(const Star& star, const std::vector<int>& part, int which) const
+std::vector<std::int32_t> Repairer::RegionsOfPart(const VertexStar& star, const std::vector<int>& part, int which) const
 {
   std::vector<std::int32_t> regions;
   if (this->RegionOfTet.empty())
@@ -597,7 +275,7 @@ std::vector<std::int32_t> Repairer::RegionsOfPart(const Star& star, const std::v
 
 // Whether two parts of the background stand for components the image keeps apart: each stands
 // for some, and they share none.
-bool Repairer::KeptApart(const Star& star, const std::vector<int>& part, int a, int b) const
+bool Repairer::KeptApart(const VertexStar& star, const std::vector<int>& part, int a, int b) const
 {
   const std::vector<std::int32_t> first = this->RegionsOfPart(star, part, a);
   const std::vector<std::int32_t> second = this->RegionsOfPart(star, part, b);
@@ -609,12 +287,12 @@ bool Repairer::KeptApart(const Star& star, const std::vector<int>& part, int a, 
 
 // Whether giving tets to the background would join two of its parts around the vertex that the
 // image keeps apart: open a cavity of the image (a hole in the wall round it).
-bool Repairer::GivingOpensCavity(const Star& star, const std::vector<std::pair<int, std::int32_t>>& giveAway) const
+bool Repairer::GivingOpensCavity(const VertexStar& star, const std::vector<std::pair<int, std::int32_t>>& giveAway) const
 {
   if (this->RegionOfTet.empty())
     return false;
   std::vector<int> part;
-  if (Components(star, [&](int node) { return star.Class[node] == this->Background; }, part) < 2)
+  if (StarComponents(star, [&](int node) { return star.Class[node] == this->Background; }, part) < 2)
     return false;
   const std::vector<int> touched = this->TouchedParts(star, part, this->Background, giveAway);
   for (std::size_t i = 0; i < touched.size(); ++i)
@@ -626,7 +304,7 @@ bool Repairer::GivingOpensCavity(const Star& star, const std::vector<std::pair<i
 
 // Giving the spare part of a class away: each of its tets to the neighbouring class (one of
 // `alternatives`) it holds most of. Returns the votes that costs (Unreachable: no neighbour).
-std::int64_t Repairer::PlanGiveAway(const Star& star, const std::vector<int>& part, int spare, std::int32_t cls,
+std::int64_t Repairer::PlanGiveAway(const VertexStar& star, const std::vector<int>& part, int spare, std::int32_t cls,
   std::vector<std::int32_t>& alternatives, std::vector<std::pair<int, std::int32_t>>& giveAway) const
 {
   for (int node = 0; node < star.Nodes(); ++node)
@@ -655,10 +333,10 @@ std::int64_t Repairer::PlanGiveAway(const Star& star, const std::vector<int>& pa
 
 // A class in several parts around the vertex: the part it can best spare is either joined to
 // the part it values most, or given to its neighbours, whichever costs fewer votes.
-void Repairer::RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed)
+void Repairer::RepairSplit(VertexStar& star, std::int32_t cls, std::vector<std::int64_t>& changed)
 {
   std::vector<int> part;
-  const int parts = Components(star, [&](int node) { return star.Class[node] == cls; }, part);
+  const int parts = StarComponents(star, [&](int node) { return star.Class[node] == cls; }, part);
   std::vector<std::int64_t> worth(parts, 0);
   for (int node = 0; node < star.Nodes(); ++node)
     if (part[node] >= 0)
@@ -711,10 +389,10 @@ void Repairer::RepairSplit(Star& star, std::int32_t cls, std::vector<std::int64_
 // fill takes the class. Where the class is the background, or where that hole holds a pinned
 // tet or the outside, the ring may instead be cut by a path of the hole's class (two tissues
 // that touched only here then share a face; a kept component's last tet stays).
-void Repairer::RepairRing(Star& star, std::int32_t cls, std::vector<std::int64_t>& changed)
+void Repairer::RepairRing(VertexStar& star, std::int32_t cls, std::vector<std::int64_t>& changed)
 {
   std::vector<int> hole;
-  const int holes = Components(star, [&](int node) { return star.Class[node] != cls; }, hole);
+  const int holes = StarComponents(star, [&](int node) { return star.Class[node] != cls; }, hole);
   std::vector<std::int64_t> fillCost(holes, 0);
   for (int node = 0; node < star.Nodes(); ++node)
     if (hole[node] >= 0)
@@ -763,7 +441,7 @@ void Repairer::RepairRing(Star& star, std::int32_t cls, std::vector<std::int64_t
 // the vertex has had its share of those, the highest ranked (the tissue with the most tets).
 // Tets only ever move up the ranks that way, so neighbouring vertices cannot undo each other's
 // last resorts for ever. A pinned tet's class wins outright.
-void Repairer::Unify(Star& star, bool byRank, std::vector<std::int64_t>& changed)
+void Repairer::Unify(VertexStar& star, bool byRank, std::vector<std::int64_t>& changed)
 {
   std::map<std::int32_t, std::int64_t> votes; // the star's votes for each class present
   for (const std::int32_t cls : star.Class)
@@ -784,7 +462,7 @@ void Repairer::Unify(Star& star, bool byRank, std::vector<std::int64_t>& changed
   for (int node = 0; node < star.Nodes(); ++node)
     if (star.IsTet(node) && star.Class[node] != best)
       this->Relabel(star, node, best, changed);
-  Violation violation;
+  StarViolation violation;
   if (this->FindViolation(star, violation))
   {
     // The mesh boundary itself pinches here: leave the vertex to the background, for good.
@@ -801,9 +479,9 @@ void Repairer::Unify(Star& star, bool byRank, std::vector<std::int64_t>& changed
 void Repairer::RepairStar(PointId v, int visit, std::vector<std::int64_t>& changed,
   ManifoldRepairResult& result)
 {
-  Star& star = this->Scratch;
+  VertexStar& star = this->Scratch;
   this->Load(v, star);
-  Violation violation;
+  StarViolation violation;
   if (!this->FindViolation(star, violation))
   {
     return;
@@ -831,9 +509,9 @@ std::vector<char> ManifoldVertices(const Repairer& repairer, std::size_t pointCo
   const std::int64_t count = static_cast<std::int64_t>(pointCount);
 #pragma omp parallel num_threads(threads)
   {
-    Star star;
+    VertexStar star;
     std::vector<int> localOf(repairer.TetCount(), -1);
-    Violation violation;
+    StarViolation violation;
 #pragma omp for schedule(dynamic, 1024)
     for (std::int64_t p = 0; p < count; ++p)
     {
@@ -924,8 +602,8 @@ std::int64_t CountNonManifoldVertices(const std::vector<Eigen::Vector3d>& points
   const std::size_t pointCount = points.size();
   Repairer repairer(points, tets, across, background, none, copy);
   std::int64_t count = 0;
-  Star star;
-  Violation violation;
+  VertexStar star;
+  StarViolation violation;
   for (std::size_t p = 0; p < pointCount; ++p)
   {
     if (repairer.IsUniform(static_cast<PointId>(p)))
