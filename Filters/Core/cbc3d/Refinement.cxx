@@ -576,6 +576,57 @@ std::size_t KeepSplittable(const RedGreenMesh& hierarchy, double minimumEdge, st
   }
   return splits;
 }
+// How small a tet may get, and how much memory the mesh may take.
+struct PassLimits
+{
+  double MinimumEdge;
+  std::size_t MemoryBytes;
+};
+
+// Marks the reds that fidelity or coverage wants split (and that may be) and the edges coverage
+// bisects, and splits them; false, with the reason in `result`, when there is nothing left to
+// split or the splits would pass the memory limit.
+bool SplitOnePass(const LabelImage& image, const TissueComponents& components, const RefinementParams& params,
+  const BoundaryCoverage* coverage, const PassLimits& limits, const std::map<std::int32_t, TissueFidelity>& fidelity,
+  const std::vector<char>& componentInMesh, const LabelledMesh& mesh, RedGreenMesh& hierarchy,
+  RefinementResult& result)
+{
+  std::vector<char> marked = MarkForFidelity(image, components, params, mesh, fidelity, componentInMesh,
+    hierarchy.Reds().size());
+  std::vector<std::pair<PointId, PointId>> bisect;
+  const bool coverageWanted = coverage &&
+    MarkForCoverage(*coverage, hierarchy, mesh, limits.MinimumEdge, result, marked, bisect);
+  bool anyWanted = coverageWanted;
+  const std::size_t splits = KeepSplittable(hierarchy, limits.MinimumEdge, marked, anyWanted);
+  if (splits == 0 && bisect.empty())
+  {
+    result.StopReason = anyWanted ? "the tets left to refine are at the minimum edge length"
+      : coverage ? "every tissue reached the fidelity target and the boundary distance"
+                 : "every tissue reached the fidelity target";
+    return false;
+  }
+  // Each red split makes 8 tets of one; closure adds some more.
+  const double expectedTets = double(mesh.Tets.size()) + 10.0 * double(splits) + 6.0 * double(bisect.size());
+  if (expectedTets * BytesPerTet > double(limits.MemoryBytes))
+  {
+    std::ostringstream reason;
+    reason << "stopped before exceeding the memory limit (about " << std::llround(expectedTets) << " tets)";
+    result.StopReason = reason.str();
+    return false;
+  }
+  for (std::size_t red = 0; red < marked.size(); ++red)
+  {
+    if (marked[red])
+    {
+      hierarchy.SplitRed(red);
+    }
+  }
+  for (const auto& [a, b] : bisect)
+  {
+    hierarchy.SplitEdge(a, b);
+  }
+  return true;
+}
 } // namespace
 
 Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params,
@@ -622,40 +673,10 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
       break;
     }
 
-    std::vector<char> marked = MarkForFidelity(image, components, params, mesh, fidelity, componentInMesh,
-      hierarchy.Reds().size());
-    std::vector<std::pair<PointId, PointId>> bisect;
-    const bool coverageWanted = coverage &&
-      MarkForCoverage(*coverage, hierarchy, mesh, minimumEdge, result, marked, bisect);
-    bool anyWanted = coverageWanted;
-    const std::size_t splits = KeepSplittable(hierarchy, minimumEdge, marked, anyWanted);
-    if (splits == 0 && bisect.empty())
+    if (!SplitOnePass(image, components, params, coverage.get(), PassLimits{ minimumEdge, memoryLimit }, fidelity,
+          componentInMesh, mesh, hierarchy, result))
     {
-      result.StopReason = anyWanted ? "the tets left to refine are at the minimum edge length"
-        : coverage ? "every tissue reached the fidelity target and the boundary distance"
-                   : "every tissue reached the fidelity target";
       break;
-    }
-    // Each red split makes 8 tets of one; closure adds some more.
-    const double expectedTets = double(mesh.Tets.size()) + 10.0 * double(splits) + 6.0 * double(bisect.size());
-    if (expectedTets * BytesPerTet > double(memoryLimit))
-    {
-      std::ostringstream reason;
-      reason << "stopped before exceeding the memory limit (about " << std::llround(expectedTets)
-             << " tets)";
-      result.StopReason = reason.str();
-      break;
-    }
-    for (std::size_t red = 0; red < marked.size(); ++red)
-    {
-      if (marked[red])
-      {
-        hierarchy.SplitRed(red);
-      }
-    }
-    for (const auto& [a, b] : bisect)
-    {
-      hierarchy.SplitEdge(a, b);
     }
     ++result.Passes;
   }
