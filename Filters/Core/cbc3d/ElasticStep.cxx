@@ -41,6 +41,7 @@ bool ElasticStep::Solve(const Eigen::VectorXd& springs, const Eigen::VectorXd& l
     return false;
   }
   const ScopedEigenThreads scope(threads);
+  this->Solver.preconditioner().Set(this->Diagonal);
   this->Solver.compute(this->System);
   for (int chunk = 0; chunk < 20; ++chunk)
   {

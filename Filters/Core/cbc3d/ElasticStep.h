@@ -37,13 +37,32 @@ public:
   Eigen::Index Size() const { return this->System.rows(); }
 
 private:
+  // Eigen's diagonal preconditioner, told the diagonal rather than searching every column of
+  // the matrix for it at each solve (a serial scan: 1.5% of the brain's run on 2 threads). The
+  // same inverses, so the same steps.
+  class KnownDiagonal : public Eigen::DiagonalPreconditioner<double>
+  {
+  public:
+    void Set(const std::vector<double*>& diagonal)
+    {
+      this->m_invdiag.resize(Eigen::Index(diagonal.size()));
+      for (std::size_t i = 0; i < diagonal.size(); ++i)
+        this->m_invdiag[Eigen::Index(i)] = *diagonal[i] != 0.0 ? 1.0 / *diagonal[i] : 1.0;
+      this->m_isInitialized = true;
+    }
+    template <typename Matrix>
+    KnownDiagonal& analyzePattern(const Matrix&) { return *this; }
+    template <typename Matrix>
+    KnownDiagonal& factorize(const Matrix&) { return *this; }
+    template <typename Matrix>
+    KnownDiagonal& compute(const Matrix&) { return *this; }
+  };
+
   Eigen::SparseMatrix<double> System;  // the stiffness, its diagonal with the last springs added
   std::vector<double*> Diagonal;       // System's diagonal entries
   std::vector<double> StiffnessDiagonal;
   Eigen::VectorXd Du;                  // the last step (the next solve starts from it)
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
-    Eigen::DiagonalPreconditioner<double>>
-    Solver;
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper, KnownDiagonal> Solver;
 };
 } // namespace cbc3d
 
