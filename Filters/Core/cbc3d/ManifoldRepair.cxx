@@ -371,10 +371,13 @@ void Repairer::RepairSplit(VertexStar& star, std::int32_t cls, std::vector<std::
   const std::int64_t joinCost = this->Path(star, from, through, goal, cls, path);
   const bool opensCavity = cls == this->Background ? this->KeptApart(star, part, keeper, spare)
                                                    : this->GivingOpensCavity(star, giveAway);
-  const bool closesLoop = joinCost < giveCost && this->JoinedNearby(star, part, keeper, spare, cls) &&
-    !(cls == this->Background && this->GivingJoinsNearby(star, alternatives, giveAway));
+  // (The searches for a loop, a few thousand tets each, only where they can change the answer.)
+  const auto closesLoop = [&] {
+    return this->JoinedNearby(star, part, keeper, spare, cls) &&
+      !(cls == this->Background && this->GivingJoinsNearby(star, alternatives, giveAway));
+  };
   const bool join = opensCavity ? cls != this->Background && joinCost < Unreachable
-                                : joinCost < giveCost && !closesLoop;
+                                : joinCost < giveCost && !closesLoop();
   if (join)
   {
     for (const int node : path)
