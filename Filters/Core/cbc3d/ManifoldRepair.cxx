@@ -104,6 +104,7 @@ private:
   std::vector<std::int32_t>& Classes;
   const std::vector<std::int32_t>& RegionOfTet; // empty: the image has no cavity to keep
   std::vector<int> LocalOf; // scratch: tet -> its node in the star being loaded
+  std::vector<std::int64_t> SearchQueue; // scratch of JoinedNearby
   VertexStar Scratch;             // the star being repaired
   std::map<std::int32_t, std::int64_t> TetsOfClass; // at the start: the last resort's ranks
   // Tets of stars where the mesh itself pinches, left to the background for good by the last
@@ -186,7 +187,8 @@ bool Repairer::JoinedNearby(const VertexStar& star, const std::vector<int>& part
   std::int32_t cls)
 {
   constexpr int Visited = -2, Goal = -3;
-  std::vector<std::int64_t> queue;
+  std::vector<std::int64_t>& queue = this->SearchQueue; // kept: tens of thousands of searches
+  queue.clear();
   for (int node = 0; node < static_cast<int>(star.Tets.size()); ++node)
   {
     if (part[node] == spare)
