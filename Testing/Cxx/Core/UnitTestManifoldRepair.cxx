@@ -5,6 +5,7 @@
 #include "cbc3d/ManifoldRepair.h"
 #include "cbc3d/MeshFaces.h"
 #include "cbc3d/MeshTopology.h"
+#include "cbc3d/VertexStar.h"
 
 #include "TestMeshes.h"
 
@@ -89,6 +90,46 @@ bool Inside(int x, int y, int z, int lo, int hi)
   return x >= lo && x < hi && y >= lo && y < hi && z >= lo && z < hi;
 }
 } // namespace
+
+namespace
+{
+// A star of nodes with these classes, linked along `links`.
+cbc3d::VertexStar StarOf(const std::vector<std::int32_t>& classes, const std::vector<std::pair<int, int>>& links)
+{
+  cbc3d::VertexStar star;
+  star.Class = classes;
+  star.Links.resize(classes.size());
+  for (std::size_t i = 0; i < classes.size(); ++i)
+    star.Tets.push_back(std::int64_t(i));
+  for (const auto& [a, b] : links)
+    cbc3d::LinkNodes(star, a, b);
+  return star;
+}
+} // namespace
+
+TEST(VertexStar, SplitClassesComeFirstThenRingsAndTwoWholeClassesHaveNeither)
+{
+  cbc3d::StarViolation found;
+  const std::vector<std::pair<int, int>> cycle = { { 0, 1 }, { 1, 2 }, { 2, 3 }, { 3, 0 } };
+  // Alternating round a cycle: both classes in two parts; the smaller label is named.
+  ASSERT_TRUE(cbc3d::FindStarViolation(StarOf({ 2, 1, 2, 1 }, cycle), 0, found));
+  EXPECT_TRUE(found.Split);
+  EXPECT_EQ(found.Class, 1);
+  // Two halves of a cycle: each class one piece, so each one's complement (the other) too.
+  EXPECT_FALSE(cbc3d::FindStarViolation(StarOf({ 1, 1, 2, 2 }, cycle), 0, found));
+  // A chain A - B - C: every class whole, but B's complement is A and C apart: a ring of B.
+  const std::vector<std::pair<int, int>> chain = { { 0, 1 }, { 1, 2 } };
+  ASSERT_TRUE(cbc3d::FindStarViolation(StarOf({ 3, 5, 7 }, chain), 0, found));
+  EXPECT_FALSE(found.Split);
+  EXPECT_EQ(found.Class, 5);
+  // The same chain with A again at its end: A is split, which comes before B's ring.
+  ASSERT_TRUE(cbc3d::FindStarViolation(StarOf({ 3, 5, 3 }, chain), 0, found));
+  EXPECT_TRUE(found.Split);
+  EXPECT_EQ(found.Class, 3);
+  // Background alone has nothing to repair, however it is cut.
+  EXPECT_FALSE(cbc3d::FindStarViolation(StarOf({ 0, 0, 0, 0 }, { { 0, 1 } }), 0, found));
+  EXPECT_TRUE(cbc3d::FindStarViolation(StarOf({ 0, 0, 0, 0 }, { { 0, 1 } }), 9, found));
+}
 
 TEST(ManifoldRepair, ASolidBlockIsLeftAlone)
 {
