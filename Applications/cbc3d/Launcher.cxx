@@ -1,8 +1,10 @@
 // The cbc3d command: starts the mesher (libexec/cbc3d/cbc3d beside this program's folder) with
-// glibc's malloc asking for huge pages (HugePages.h). It links neither VTK nor the core, so it
-// starts in about a millisecond where the mesher takes 40 ms or more to load its libraries.
+// glibc's malloc asking for huge pages (HugePages.h) and its OpenMP threads waiting briefly
+// (ThreadWaits.h). It links neither VTK nor the core, so it starts in about a millisecond where
+// the mesher takes 40 ms or more to load its libraries.
 #include "HugePages.h"
 #include "StopSignals.h"
+#include "ThreadWaits.h"
 
 #include <cerrno>
 #include <cstdio>
@@ -31,6 +33,7 @@ int main(int, char* argv[])
   }
   const std::string mesher =
     program.substr(0, program.find_last_of('/') + 1) + CBC3D_MESHER_FROM_BIN;
+  ShortenThreadWaits();
   RunWithHugePages(mesher.c_str(), argv, StopSignalNumbers());
   std::fprintf(stderr, "cbc3d: error: cannot run the mesher %s: %s\n", mesher.c_str(),
     std::strerror(errno));
