@@ -201,12 +201,18 @@ bool OneOf(const std::string& text, std::initializer_list<const char*> allowed)
   return std::any_of(allowed.begin(), allowed.end(), [&](const char* value) { return text == value; });
 }
 
+bool AddOutput(const std::string& text, Parsing& parsing, std::string&)
+{
+  parsing.Options.Outputs.push_back(text);
+  return true;
+}
+
 // The options that write files, and how the mesh is made.
 const std::map<std::string, SetValue>& ValueOptions()
 {
   static const std::map<std::string, SetValue> table = {
-    { "-o", [](const std::string& t, Parsing& p, std::string&) { p.Options.Outputs.push_back(t); return true; } },
-    { "--output", [](const std::string& t, Parsing& p, std::string&) { p.Options.Outputs.push_back(t); return true; } },
+    { "-o", AddOutput },
+    { "--output", AddOutput },
     { "--surfaces", [](const std::string& t, Parsing& p, std::string&) { p.Options.SurfacesPath = t; return true; } },
     { "--report", [](const std::string& t, Parsing& p, std::string&) { p.Options.ReportPath = t; return true; } },
     { "--msh-version", [](const std::string& t, Parsing& p, std::string& e) {
