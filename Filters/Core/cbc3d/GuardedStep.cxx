@@ -2,6 +2,7 @@
 
 #include "cbc3d/Parallel.h"
 #include "cbc3d/TetGeometry.h"
+#include "cbc3d/VolumeAims.h"
 
 #include <cmath>
 
@@ -94,6 +95,12 @@ StepOutcome GuardedStep(const TetMesh& mesh, const std::vector<Eigen::Vector3d>&
   return StepOutcome::Spoilt;
 }
 
+namespace
+{
+// A tissue within this of its target volume (relative) is done.
+constexpr double VolumeTolerance = 1e-3;
+} // namespace
+
 StepOutcome RestoreTissueVolumes(const TissueVolumeKeeper& volumes, const TetMesh& mesh,
   const std::vector<PointId>& surface, std::vector<Eigen::Vector3d>& x, double bound, int threads,
   FidelityGuard& fidelity, const std::function<bool()>& keepGoing)
@@ -105,11 +112,14 @@ StepOutcome RestoreTissueVolumes(const TissueVolumeKeeper& volumes, const TetMes
   }
   std::vector<Eigen::Vector3d> trial;
   std::vector<double> share;
+  VolumeAims aims(volumes.TargetVolumes());
   // Each round's step is shortened where tets would spoil, so a few rounds may be needed.
-  for (int round = 0; round < 8 && volumes.LargestRelativeShortfall(x) > 1e-3; ++round)
+  for (int round = 0; round < 8 && volumes.LargestRelativeShortfall(x) > VolumeTolerance; ++round)
   {
+    const std::map<std::int32_t, double> before = volumes.Volumes(x);
+    const std::map<std::int32_t, double> aimed = aims.Aims(before);
     std::vector<Eigen::Vector3d> goals = x;
-    volumes.OffsetGoals(goals, moving);
+    volumes.OffsetGoals(goals, moving, aimed);
     const StepOutcome outcome = GuardedStep(mesh, x, [&](std::size_t p) { return Eigen::Vector3d(goals[p] - x[p]); },
       bound, threads, fidelity, keepGoing, trial, share);
     if (outcome != StepOutcome::Made)
@@ -118,6 +128,7 @@ StepOutcome RestoreTissueVolumes(const TissueVolumeKeeper& volumes, const TetMes
     }
     x.swap(trial);
     fidelity.Accept(x, keepGoing);
+    aims.Observe(before, aimed, volumes.Volumes(x));
   }
   return StepOutcome::Made;
 }

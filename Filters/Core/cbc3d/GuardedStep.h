@@ -37,7 +37,8 @@ StepOutcome GuardedStep(const TetMesh& mesh, const std::vector<Eigen::Vector3d>&
 
 /// Moves the surface and interface points straight along their normals until each tissue holds
 /// its target volume (rounds of first-order offsets, each a guarded step): what the elastic
-/// steps left of the shortfall, where springs and held vertices fell short of the goals.
+/// steps left of the shortfall, where springs and held vertices fell short of the goals. A
+/// tissue that a round moved only part of the way asks for more in the next (VolumeAims).
 StepOutcome RestoreTissueVolumes(const TissueVolumeKeeper& volumes, const TetMesh& mesh,
   const std::vector<PointId>& surface, std::vector<Eigen::Vector3d>& x, double bound, int threads,
   FidelityGuard& fidelity, const std::function<bool()>& keepGoing);

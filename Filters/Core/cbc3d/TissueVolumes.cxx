@@ -124,8 +124,8 @@ std::vector<TissueVolumeKeeper::PointPairArea> TissueVolumeKeeper::AreasAtMoving
 // M[t][p] is the volume tissue t gains when pair p's points move a unit along their normals:
 // the sum over those points of the tissue's volume gradient (a third of its area vectors
 // there: the derivative of a closed surface's volume) dotted with the pair's unit normal there.
-Eigen::VectorXd TissueVolumeKeeper::InterfaceOffsets(
-  const std::vector<PointPairArea>& areas, const std::map<std::int32_t, double>& volumes) const
+Eigen::VectorXd TissueVolumeKeeper::InterfaceOffsets(const std::vector<PointPairArea>& areas,
+  const std::map<std::int32_t, double>& volumes, const std::map<std::int32_t, double>& aims) const
 {
   std::map<std::int32_t, int> row;
   for (const auto& [label, target] : this->Targets)
@@ -177,7 +177,8 @@ Eigen::VectorXd TissueVolumeKeeper::InterfaceOffsets(
   Eigen::VectorXd shortfall(row.size());
   for (const auto& [label, r] : row)
   {
-    shortfall[r] = this->Targets.at(label) - volumes.at(label);
+    const auto aim = aims.find(label);
+    shortfall[r] = (aim != aims.end() ? aim->second : this->Targets.at(label)) - volumes.at(label);
   }
   const Eigen::MatrixXd spread = weight.cwiseInverse().asDiagonal() * gain.transpose();
   const Eigen::VectorXd multipliers = (gain * spread).completeOrthogonalDecomposition().solve(shortfall);
@@ -189,14 +190,15 @@ Eigen::VectorXd TissueVolumeKeeper::InterfaceOffsets(
   return offsets;
 }
 
-double TissueVolumeKeeper::OffsetGoals(std::vector<Eigen::Vector3d>& goals, const std::vector<char>& moving) const
+double TissueVolumeKeeper::OffsetGoals(std::vector<Eigen::Vector3d>& goals, const std::vector<char>& moving,
+  const std::map<std::int32_t, double>& aims) const
 {
   if (this->Faces.empty() || this->Targets.empty())
   {
     return 0.0;
   }
   const std::vector<PointPairArea> areas = this->AreasAtMovingPoints(goals, moving);
-  const Eigen::VectorXd offsets = this->InterfaceOffsets(areas, this->Volumes(goals));
+  const Eigen::VectorXd offsets = this->InterfaceOffsets(areas, this->Volumes(goals), aims);
   for (const PointPairArea& entry : areas)
   {
     const double length = entry.Area.norm();

@@ -40,10 +40,15 @@ public:
   /// The largest relative difference between a tissue's volume at `x` and its target.
   double LargestRelativeShortfall(const std::vector<Eigen::Vector3d>& x) const;
 
+  /// The volume each tissue should have (mm^3).
+  const std::map<std::int32_t, double>& TargetVolumes() const { return this->Targets; }
+
   /// Moves the goals of the moving points (goal per point, `moving` per point) so that, with
   /// every moving point at its goal and the rest in place, each tissue meets its target to
-  /// first order. Returns the largest interface offset applied (mm).
-  double OffsetGoals(std::vector<Eigen::Vector3d>& goals, const std::vector<char>& moving) const;
+  /// first order; a tissue in `aims` aims at that volume instead. Returns the largest
+  /// interface offset applied (mm).
+  double OffsetGoals(std::vector<Eigen::Vector3d>& goals, const std::vector<char>& moving,
+    const std::map<std::int32_t, double>& aims = {}) const;
 
 private:
   struct InterfaceFace
@@ -62,7 +67,7 @@ private:
   std::vector<PointPairArea> AreasAtMovingPoints(
     const std::vector<Eigen::Vector3d>& x, const std::vector<char>& moving) const;
   Eigen::VectorXd InterfaceOffsets(const std::vector<PointPairArea>& areas,
-    const std::map<std::int32_t, double>& volumes) const;
+    const std::map<std::int32_t, double>& volumes, const std::map<std::int32_t, double>& aims) const;
 
   std::vector<std::pair<std::int32_t, std::int32_t>> Pairs; // (tissue, other tissue or Outside)
   std::vector<InterfaceFace> Faces;

@@ -1,5 +1,6 @@
 #include "cbc3d/Quality.h"
 #include "cbc3d/TissueVolumes.h"
+#include "cbc3d/VolumeAims.h"
 
 #include "TestMeshes.h"
 
@@ -137,4 +138,43 @@ TEST(TissueVolumes, ImageVolumesCountEveryTissueVoxelOnAnyThreads)
     for (const auto& [label, count] : expected)
       EXPECT_EQ(volumes.at(label), 3.0 * double(count)) << "label " << label << ", " << threads << " threads";
   }
+}
+
+TEST(TissueVolumes, AnAimOtherThanTheTargetOffsetsInProportionToFirstOrder)
+{
+  // A 2 mm cube of one tissue: 8 mm^3 that meets its target, so nothing moves unless it aims
+  // elsewhere; the offsets are linear in the shortfall asked for.
+  const auto mesh = KuhnGrid(2, 2, 2, [](int, int, int) { return true; }, [](int, int, int, int) { return 1; });
+  const cbc3d::TissueVolumeKeeper keeper(mesh, { { 1, 8.0 } }, 1.0);
+  const std::vector<char> moving(mesh.Points.size(), 1);
+  std::vector<Eigen::Vector3d> met = mesh.Points, once = mesh.Points, twice = mesh.Points;
+  EXPECT_NEAR(keeper.OffsetGoals(met, moving), 0.0, 1e-12);
+  const double offset = keeper.OffsetGoals(once, moving, { { 1, 8.8 } });
+  EXPECT_NEAR(keeper.OffsetGoals(twice, moving, { { 1, 9.6 } }), 2.0 * offset, 1e-12);
+  // To first order: the 0.8 mm^3 asked for, give or take the growth of the edges and corners.
+  EXPECT_GT(offset, 0.8 / 24.0 * 0.9);
+  EXPECT_NEAR(keeper.Volumes(once).at(1), 8.8, 0.05);
+}
+
+TEST(VolumeAims, ATissueThatGotPartOfItsShortfallAsksForMoreUntilItIsNear)
+{
+  const std::map<std::int32_t, double> targets = { { 1, 100.0 }, { 2, 50.0 }, { 3, 0.0 } };
+  cbc3d::VolumeAims aims(targets);
+  // The first round asks for the targets themselves; a free tissue (no volume above 0) is left out.
+  const std::map<std::int32_t, double> start = { { 1, 60.0 }, { 2, 40.0 }, { 3, 5.0 } };
+  const auto first = aims.Aims(start);
+  EXPECT_EQ(first, (std::map<std::int32_t, double>{ { 1, 100.0 }, { 2, 50.0 } }));
+  // Tissue 1 got a quarter of its 40 (asks twice, the most), tissue 2 went the wrong way.
+  aims.Observe(start, first, { { 1, 70.0 }, { 2, 38.0 } });
+  const auto second = aims.Aims({ { 1, 70.0 }, { 2, 38.0 } });
+  EXPECT_DOUBLE_EQ(second.at(1), 70.0 + 2.0 * 30.0);
+  EXPECT_DOUBLE_EQ(second.at(2), 50.0);
+  // Tissue 1 then got 40 of the 60 it asked for, past its target: 1.5 times its excess next.
+  // Tissue 2 got 14 of the 12 it asked for: no gain below 1.
+  aims.Observe({ { 1, 70.0 }, { 2, 38.0 } }, second, { { 1, 110.0 }, { 2, 52.0 } });
+  const auto third = aims.Aims({ { 1, 110.0 }, { 2, 52.0 } });
+  EXPECT_DOUBLE_EQ(third.at(1), 110.0 - 1.5 * 10.0);
+  EXPECT_DOUBLE_EQ(third.at(2), 50.0);
+  // Within 1% of its target a tissue asks for the plain shortfall, whatever it learnt.
+  EXPECT_DOUBLE_EQ(aims.Aims({ { 1, 99.5 } }).at(1), 100.0);
 }
