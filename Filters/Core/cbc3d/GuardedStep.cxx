@@ -113,13 +113,14 @@ StepOutcome RestoreTissueVolumes(const TissueVolumeKeeper& volumes, const TetMes
   std::vector<Eigen::Vector3d> trial;
   std::vector<double> share;
   VolumeAims aims(volumes.TargetVolumes());
+  const TissueVolumeKeeper::AreaSums sums(volumes, moving);
   // Each round's step is shortened where tets would spoil, so a few rounds may be needed.
   for (int round = 0; round < 8 && volumes.LargestRelativeShortfall(x) > VolumeTolerance; ++round)
   {
     const std::map<std::int32_t, double> before = volumes.Volumes(x);
     const std::map<std::int32_t, double> aimed = aims.Aims(before);
     std::vector<Eigen::Vector3d> goals = x;
-    volumes.OffsetGoals(goals, moving, aimed);
+    volumes.OffsetGoals(goals, sums, aimed, threads);
     const StepOutcome outcome = GuardedStep(mesh, x, [&](std::size_t p) { return Eigen::Vector3d(goals[p] - x[p]); },
       bound, threads, fidelity, keepGoing, trial, share);
     if (outcome != StepOutcome::Made)

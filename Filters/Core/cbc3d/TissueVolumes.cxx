@@ -1,5 +1,6 @@
 #include "cbc3d/TissueVolumes.h"
 
+#include "cbc3d/Parallel.h"
 #include "cbc3d/TaggedMesh.h"
 
 #include <Eigen/Geometry>
@@ -83,40 +84,59 @@ double TissueVolumeKeeper::LargestRelativeShortfall(const std::vector<Eigen::Vec
   return largest;
 }
 
-std::vector<TissueVolumeKeeper::PointPairArea> TissueVolumeKeeper::AreasAtMovingPoints(
-  const std::vector<Eigen::Vector3d>& x, const std::vector<char>& moving) const
+TissueVolumeKeeper::AreaSums::AreaSums(const TissueVolumeKeeper& keeper, const std::vector<char>& moving)
+  : Keeper(keeper)
 {
-  std::vector<PointPairArea> areas;
-  areas.reserve(3 * this->Faces.size()); // growing it copied the entries again and again
-  for (const InterfaceFace& face : this->Faces)
+  // Each face's area at each of its moving points, in face order, sorted by (point, pair): the
+  // sort compares only those, so a face's place among its sum's faces is the same whatever
+  // else the entries carry.
+  struct Entry
   {
-    const Eigen::Vector3d area = AreaVector(x[face.Points[0]], x[face.Points[1]], x[face.Points[2]]);
-    for (const PointId p : face.Points)
-    {
+    PointId Point;
+    int Pair;
+    std::int32_t Face;
+  };
+  std::vector<Entry> entries;
+  entries.reserve(3 * keeper.Faces.size());
+  for (std::size_t f = 0; f < keeper.Faces.size(); ++f)
+    for (const PointId p : keeper.Faces[f].Points)
       if (moving[p])
-      {
-        areas.push_back({ p, face.Pair, area });
-      }
-    }
-  }
-  std::sort(areas.begin(), areas.end(), [](const PointPairArea& a, const PointPairArea& b) {
+        entries.push_back({ p, keeper.Faces[f].Pair, static_cast<std::int32_t>(f) });
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
     return a.Point != b.Point ? a.Point < b.Point : a.Pair < b.Pair;
   });
-  // Sum the entries of each (point, pair).
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < areas.size(); ++i)
+  for (std::size_t i = 0; i < entries.size(); ++i)
   {
-    if (kept > 0 && areas[kept - 1].Point == areas[i].Point && areas[kept - 1].Pair == areas[i].Pair)
+    if (i == 0 || entries[i].Point != entries[i - 1].Point || entries[i].Pair != entries[i - 1].Pair)
     {
-      areas[kept - 1].Area += areas[i].Area;
+      this->Sums.push_back({ entries[i].Point, entries[i].Pair, Eigen::Vector3d::Zero() });
+      this->Start.push_back(static_cast<std::int64_t>(i));
     }
-    else
-    {
-      areas[kept++] = areas[i];
-    }
+    this->FaceOf.push_back(entries[i].Face);
   }
-  areas.resize(kept);
-  return areas;
+  this->Start.push_back(static_cast<std::int64_t>(entries.size()));
+}
+
+std::vector<TissueVolumeKeeper::PointPairArea> TissueVolumeKeeper::AreaSums::At(
+  const std::vector<Eigen::Vector3d>& x, int threads) const
+{
+  const auto& faces = this->Keeper.Faces;
+  const std::int64_t faceCount = static_cast<std::int64_t>(faces.size());
+  std::vector<Eigen::Vector3d> area(faces.size());
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
+  for (std::int64_t f = 0; f < faceCount; ++f)
+    area[f] = AreaVector(x[faces[f].Points[0]], x[faces[f].Points[1]], x[faces[f].Points[2]]);
+  std::vector<PointPairArea> sums = this->Sums;
+  const std::int64_t count = static_cast<std::int64_t>(sums.size());
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
+  for (std::int64_t i = 0; i < count; ++i)
+  {
+    Eigen::Vector3d sum = area[this->FaceOf[this->Start[i]]];
+    for (std::int64_t k = this->Start[i] + 1; k < this->Start[i + 1]; ++k)
+      sum += area[this->FaceOf[k]];
+    sums[i].Area = sum;
+  }
+  return sums;
 }
 
 // The offsets d (one per pair) that meet every target to first order with the least
@@ -193,11 +213,17 @@ Eigen::VectorXd TissueVolumeKeeper::InterfaceOffsets(const std::vector<PointPair
 double TissueVolumeKeeper::OffsetGoals(std::vector<Eigen::Vector3d>& goals, const std::vector<char>& moving,
   const std::map<std::int32_t, double>& aims) const
 {
+  return this->OffsetGoals(goals, AreaSums(*this, moving), aims, 1);
+}
+
+double TissueVolumeKeeper::OffsetGoals(std::vector<Eigen::Vector3d>& goals, const AreaSums& sums,
+  const std::map<std::int32_t, double>& aims, int threads) const
+{
   if (this->Faces.empty() || this->Targets.empty())
   {
     return 0.0;
   }
-  const std::vector<PointPairArea> areas = this->AreasAtMovingPoints(goals, moving);
+  const std::vector<PointPairArea> areas = sums.At(goals, threads);
   const Eigen::VectorXd offsets = this->InterfaceOffsets(areas, this->Volumes(goals), aims);
   for (const PointPairArea& entry : areas)
   {

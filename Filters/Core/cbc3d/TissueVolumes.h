@@ -43,19 +43,6 @@ public:
   /// The volume each tissue should have (mm^3).
   const std::map<std::int32_t, double>& TargetVolumes() const { return this->Targets; }
 
-  /// Moves the goals of the moving points (goal per point, `moving` per point) so that, with
-  /// every moving point at its goal and the rest in place, each tissue meets its target to
-  /// first order; a tissue in `aims` aims at that volume instead. Returns the largest
-  /// interface offset applied (mm).
-  double OffsetGoals(std::vector<Eigen::Vector3d>& goals, const std::vector<char>& moving,
-    const std::map<std::int32_t, double>& aims = {}) const;
-
-private:
-  struct InterfaceFace
-  {
-    std::array<PointId, 3> Points; // ordered so the normal points out of Pairs[Pair].first
-    int Pair;
-  };
   /// Area vectors (half the cross product, out of the pair's first tissue) of each pair's faces
   /// summed at each moving point: (point, pair, sum), sorted by point.
   struct PointPairArea
@@ -64,8 +51,40 @@ private:
     int Pair;
     Eigen::Vector3d Area;
   };
-  std::vector<PointPairArea> AreasAtMovingPoints(
-    const std::vector<Eigen::Vector3d>& x, const std::vector<char>& moving) const;
+
+  /// Which faces' areas sum at which (moving point, pair), and in what order: fixed while the
+  /// moving points are, so the rounds of a restoration find it once, not a sort each round.
+  class AreaSums
+  {
+  public:
+    AreaSums(const TissueVolumeKeeper& keeper, const std::vector<char>& moving);
+    /// The sums at `x`, on `threads`: each (point, pair) adds its faces in the plan's order, so
+    /// the same bits for any number of threads.
+    std::vector<PointPairArea> At(const std::vector<Eigen::Vector3d>& x, int threads) const;
+
+  private:
+    const TissueVolumeKeeper& Keeper;
+    std::vector<PointPairArea> Sums; // point and pair of each sum (areas filled by At)
+    std::vector<std::int64_t> Start; // sum i adds the faces FaceOf[Start[i]] .. FaceOf[Start[i + 1] - 1]
+    std::vector<std::int32_t> FaceOf;
+  };
+
+  /// Moves the goals of the moving points (goal per point, `moving` per point) so that, with
+  /// every moving point at its goal and the rest in place, each tissue meets its target to
+  /// first order; a tissue in `aims` aims at that volume instead. Returns the largest
+  /// interface offset applied (mm).
+  double OffsetGoals(std::vector<Eigen::Vector3d>& goals, const std::vector<char>& moving,
+    const std::map<std::int32_t, double>& aims = {}) const;
+  /// The same with the sums planned for the moving points, on `threads`.
+  double OffsetGoals(std::vector<Eigen::Vector3d>& goals, const AreaSums& sums,
+    const std::map<std::int32_t, double>& aims, int threads) const;
+
+private:
+  struct InterfaceFace
+  {
+    std::array<PointId, 3> Points; // ordered so the normal points out of Pairs[Pair].first
+    int Pair;
+  };
   Eigen::VectorXd InterfaceOffsets(const std::vector<PointPairArea>& areas,
     const std::map<std::int32_t, double>& volumes, const std::map<std::int32_t, double>& aims) const;
 

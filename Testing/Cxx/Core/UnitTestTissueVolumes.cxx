@@ -4,6 +4,7 @@
 
 #include "TestMeshes.h"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -177,4 +178,44 @@ TEST(VolumeAims, ATissueThatGotPartOfItsShortfallAsksForMoreUntilItIsNear)
   EXPECT_DOUBLE_EQ(third.at(2), 50.0);
   // Within 1% of its target a tissue asks for the plain shortfall, whatever it learnt.
   EXPECT_DOUBLE_EQ(aims.Aims({ { 1, 99.5 } }).at(1), 100.0);
+}
+
+TEST(TissueVolumes, AreaSumsAreEachPointsOutwardFaceAreasOnAnyThreads)
+{
+  // One tissue in a 3 x 2 x 2 block, its points jiggled so that no two faces are alike: one
+  // interface (the tissue and the outside), so each moving boundary point has one sum.
+  auto mesh = KuhnGrid(3, 2, 2, [](int, int, int) { return true; }, [](int, int, int, int) { return 1; });
+  for (std::size_t p = 0; p < mesh.Points.size(); ++p)
+    mesh.Points[p] += 0.05 * Eigen::Vector3d(std::sin(1.0 + p), std::cos(2.0 * p), std::sin(3.0 * p));
+  const cbc3d::TissueVolumeKeeper keeper(mesh, { { 1, 1.0 } }, 1.0);
+  std::vector<char> moving(mesh.Points.size(), 0);
+  for (std::size_t p = 0; p < moving.size(); p += 2)
+    moving[p] = 1; // every other point
+  const cbc3d::TissueVolumeKeeper::AreaSums sums(keeper, moving);
+  const auto one = sums.At(mesh.Points, 1), four = sums.At(mesh.Points, 4);
+  // Brute force: half the cross product of each boundary face, turned away from its tet.
+  std::map<cbc3d::PointId, Eigen::Vector3d> expected;
+  for (const cbc3d::MeshFace& face : cbc3d::SurfaceFaces(mesh))
+  {
+    const auto& x = mesh.Points;
+    const auto& [a, b, c] = face.Points;
+    Eigen::Vector3d area = 0.5 * (x[b] - x[a]).cross(x[c] - x[a]);
+    const auto& tet = mesh.Tets[face.Tets[0]];
+    for (const cbc3d::PointId d : tet)
+      if (d != a && d != b && d != c && area.dot(x[d] - x[a]) > 0.0)
+        area = -area;
+    for (const cbc3d::PointId p : face.Points)
+      if (moving[p])
+        expected.emplace(p, Eigen::Vector3d::Zero()).first->second += area;
+  }
+  ASSERT_EQ(one.size(), expected.size());
+  ASSERT_EQ(four.size(), expected.size());
+  auto wanted = expected.begin();
+  for (std::size_t i = 0; i < one.size(); ++i, ++wanted)
+  {
+    EXPECT_EQ(one[i].Point, wanted->first); // ascending points
+    EXPECT_LT((one[i].Area - wanted->second).norm(), 1e-12) << "point " << one[i].Point;
+    EXPECT_EQ(one[i].Point, four[i].Point);
+    EXPECT_EQ(one[i].Area, four[i].Area); // bit for bit on any threads
+  }
 }
