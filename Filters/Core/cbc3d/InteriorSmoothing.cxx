@@ -40,6 +40,57 @@ std::vector<char> InteriorSmoothing::SharingATetWith(const std::vector<char>& ma
   return sharing;
 }
 
+std::vector<std::vector<PointId>> InteriorSmoothing::Levels(const std::vector<char>& movable) const
+{
+  // A movable point's level is one more than its movable neighbours' before it in point order:
+  // neighbours (they share a tet) are in different levels, the earlier one first.
+  const std::size_t count = this->Around.Start.size() - 1;
+  std::vector<int> level(count, -1);
+  std::vector<std::vector<PointId>> levels;
+  for (std::size_t p = 0; p < count; ++p)
+  {
+    if (!movable[p] || this->Around.Start[p] == this->Around.Start[p + 1])
+      continue;
+    int at = 0;
+    for (std::int64_t i = this->Around.Start[p]; i < this->Around.Start[p + 1]; ++i)
+      for (const PointId q : this->Tets[this->Around.Tets[i]])
+        if (q < static_cast<PointId>(p) && level[q] >= at)
+          at = level[q] + 1;
+    level[p] = at;
+    if (at == static_cast<int>(levels.size()))
+      levels.emplace_back();
+    levels[at].push_back(static_cast<PointId>(p));
+  }
+  return levels;
+}
+
+bool InteriorSmoothing::TryMove(
+  PointId p, std::vector<Eigen::Vector3d>& x, std::vector<double>& badness, std::vector<double>& trial) const
+{
+  const std::int64_t begin = this->Around.Start[p], end = this->Around.Start[p + 1];
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (std::int64_t i = begin; i < end; ++i)
+    for (const PointId q : this->Tets[this->Around.Tets[i]])
+      centre += x[q];
+  centre /= 4.0 * double(end - begin);
+  double before = 0.0;
+  for (std::int64_t i = begin; i < end; ++i)
+    before = std::max(before, badness[this->Around.Tets[i]]);
+  const Eigen::Vector3d kept = x[p];
+  x[p] = centre;
+  trial.clear();
+  for (std::int64_t i = begin; i < end && (trial.empty() || trial.back() < before); ++i)
+    trial.push_back(Badness(x, this->Tets[this->Around.Tets[i]]));
+  if (trial.size() == std::size_t(end - begin) && trial.back() < before)
+  {
+    for (std::int64_t i = begin; i < end; ++i)
+      badness[this->Around.Tets[i]] = trial[i - begin];
+    return true;
+  }
+  x[p] = kept;
+  return false;
+}
+
 std::size_t InteriorSmoothing::Smooth(
   std::vector<Eigen::Vector3d>& x, const std::vector<char>& movable, int sweeps, int threads) const
 {
@@ -60,40 +111,20 @@ std::size_t InteriorSmoothing::Smooth(
       badness[t] = Badness(x, tet);
     }
   }
-  std::vector<double> trial;
+  const std::vector<std::vector<PointId>> levels = this->Levels(movable);
   std::size_t moves = 0;
   for (int sweep = 0; sweep < sweeps; ++sweep)
   {
     std::size_t moved = 0;
-    for (std::size_t p = 0; p + 1 < this->Around.Start.size(); ++p)
+#pragma omp parallel num_threads(ThreadCount(threads)) reduction(+ : moved)
     {
-      const std::int64_t begin = this->Around.Start[p], end = this->Around.Start[p + 1];
-      if (!movable[p] || begin == end)
+      std::vector<double> trial;
+      for (const std::vector<PointId>& level : levels)
       {
-        continue;
-      }
-      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-      for (std::int64_t i = begin; i < end; ++i)
-        for (const PointId q : this->Tets[this->Around.Tets[i]])
-          centre += x[q];
-      centre /= 4.0 * double(end - begin);
-      double before = 0.0;
-      for (std::int64_t i = begin; i < end; ++i)
-        before = std::max(before, badness[this->Around.Tets[i]]);
-      const Eigen::Vector3d kept = x[p];
-      x[p] = centre;
-      trial.clear();
-      for (std::int64_t i = begin; i < end && (trial.empty() || trial.back() < before); ++i)
-        trial.push_back(Badness(x, this->Tets[this->Around.Tets[i]]));
-      if (trial.size() == std::size_t(end - begin) && trial.back() < before)
-      {
-        for (std::int64_t i = begin; i < end; ++i)
-          badness[this->Around.Tets[i]] = trial[i - begin];
-        ++moved;
-      }
-      else
-      {
-        x[p] = kept;
+        const std::int64_t count = static_cast<std::int64_t>(level.size());
+#pragma omp for schedule(static)
+        for (std::int64_t i = 0; i < count; ++i)
+          moved += this->TryMove(level[i], x, badness, trial);
       }
     }
     moves += moved;

@@ -21,9 +21,9 @@ class InteriorSmoothing
 public:
   explicit InteriorSmoothing(const std::vector<Tet>& tets, std::size_t pointCount);
 
-  /// Sweeps over the movable points in point order (serial, so the result does not depend on
-  /// threads; the tets' starting quality is measured on `threads`), until a sweep moves none
-  /// or `sweeps` are done. Returns how many moves it made.
+  /// Sweeps over the movable points in point order (a Gauss-Seidel sweep: each move sees the
+  /// moves before it), until a sweep moves none or `sweeps` are done. Returns how many moves it
+  /// made. On `threads`, level by level (Levels): the same moves as one thread.
   std::size_t Smooth(
     std::vector<Eigen::Vector3d>& points, const std::vector<char>& movable, int sweeps, int threads = 1) const;
 
@@ -32,6 +32,15 @@ public:
   std::vector<char> SharingATetWith(const std::vector<char>& marked, int threads) const;
 
 private:
+  /// The movable points in levels: points of one level share no tet, and of two points that
+  /// do, the earlier in point order is in an earlier level. So moving a level's points at once,
+  /// level after level, reads and writes what the sweep in point order would.
+  std::vector<std::vector<PointId>> Levels(const std::vector<char>& movable) const;
+  /// Moves p to the mean of its tets' centroids if that makes its worst tet better; keeps the
+  /// tets' `badness` up to date. `trial`: scratch.
+  bool TryMove(PointId p, std::vector<Eigen::Vector3d>& x, std::vector<double>& badness,
+    std::vector<double>& trial) const;
+
   const std::vector<Tet>& Tets;
   PointTets Around; // the tets around each point
 };

@@ -4,6 +4,8 @@
 #include "cbc3d/SurfaceEars.h"
 #include "cbc3d/TetGeometry.h"
 
+#include "TestMeshes.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -115,4 +117,67 @@ TEST(InteriorSmoothing, AnOffCentreVertexGoesBackTowardTheCentre)
   EXPECT_LT(WorstCosine(mesh, x), before);
   for (int c = 0; c < 8; ++c)
     EXPECT_EQ(x[c], mesh.Points[c]); // only the movable point moved
+}
+
+TEST(InteriorSmoothing, ASweepOnThreadsMakesTheMovesOfTheSweepInPointOrder)
+{
+  // A 6 x 5 x 4 grid of Kuhn cubes, its interior points jiggled: many movable neighbours.
+  const cbc3d::TetMesh mesh =
+    cbc3d::testing::KuhnGrid(6, 5, 4, [](int, int, int) { return true; }, [](int, int, int, int) { return 1; });
+  std::vector<Eigen::Vector3d> start = mesh.Points;
+  std::vector<char> movable(start.size(), 0);
+  for (std::size_t p = 0; p < start.size(); ++p)
+  {
+    const Eigen::Vector3d& x = mesh.Points[p];
+    const bool inside = x.x() > 0 && x.x() < 6 && x.y() > 0 && x.y() < 5 && x.z() > 0 && x.z() < 4;
+    movable[p] = inside;
+    if (inside)
+      start[p] += 0.3 * Eigen::Vector3d(std::sin(1.0 + p), std::cos(2.0 * p), std::sin(3.0 * p));
+  }
+  // The sweep itself, in point order, written out: each point goes to the mean of its tets'
+  // centroids if its worst tet's largest |cos| gets smaller (inverted counts as 2).
+  auto badness = [&](const std::vector<Eigen::Vector3d>& x, const cbc3d::Tet& t) {
+    return cbc3d::SignedVolume(x[t[0]], x[t[1]], x[t[2]], x[t[3]]) > 0.0
+      ? cbc3d::LargestDihedralCosine(x[t[0]], x[t[1]], x[t[2]], x[t[3]])
+      : 2.0;
+  };
+  std::vector<Eigen::Vector3d> expected = start;
+  std::size_t expectedMoves = 0;
+  for (int sweep = 0; sweep < 2; ++sweep)
+    for (std::size_t p = 0; p < expected.size(); ++p)
+    {
+      std::vector<cbc3d::Tet> around;
+      for (const cbc3d::Tet& tet : mesh.Tets)
+        if (std::find(tet.begin(), tet.end(), cbc3d::PointId(p)) != tet.end())
+          around.push_back(tet);
+      if (!movable[p] || around.empty())
+        continue;
+      Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+      double before = 0.0;
+      for (const cbc3d::Tet& tet : around)
+      {
+        for (const cbc3d::PointId q : tet)
+          centre += expected[q] / (4.0 * around.size());
+        before = std::max(before, badness(expected, tet));
+      }
+      const Eigen::Vector3d kept = expected[p];
+      expected[p] = centre;
+      double after = 0.0;
+      for (const cbc3d::Tet& tet : around)
+        after = std::max(after, badness(expected, tet));
+      if (after < before)
+        ++expectedMoves;
+      else
+        expected[p] = kept;
+    }
+  ASSERT_GT(expectedMoves, 50u);
+
+  const cbc3d::InteriorSmoothing smoothing(mesh.Tets, start.size());
+  for (const int threads : { 1, 2, 4 })
+  {
+    std::vector<Eigen::Vector3d> x = start;
+    EXPECT_EQ(smoothing.Smooth(x, movable, 2, threads), expectedMoves) << threads << " threads";
+    for (std::size_t p = 0; p < x.size(); ++p)
+      EXPECT_LT((x[p] - expected[p]).norm(), 1e-12) << "point " << p << ", " << threads << " threads";
+  }
 }
