@@ -361,7 +361,7 @@ int vtkCBC3DMeshQuality::RequestData(
   }
   const cbc3d::ImageTopology imageTopology =
     withImage ? cbc3d::MeasureImageTopology(*image, this->NumberOfThreads) : cbc3d::ImageTopology();
-  AddTopologyFields(fields, cbc3d::MeasureMeshTopology(mesh, faces), withImage ? &imageTopology : nullptr, tissueLabels);
+  AddTopologyFields(fields, cbc3d::MeasureMeshTopology(mesh, faces, this->NumberOfThreads), withImage ? &imageTopology : nullptr, tissueLabels);
   output->SetFieldData(fields);
   this->UpdateProgress(1.0);
   return 1;

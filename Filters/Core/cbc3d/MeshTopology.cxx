@@ -2,6 +2,7 @@
 
 #include "cbc3d/DisjointSets.h"
 #include "cbc3d/MeshFaces.h"
+#include "cbc3d/Parallel.h"
 
 #include <algorithm>
 #include <numeric>
@@ -36,6 +37,32 @@ Buckets<Value> BucketBy(std::size_t keyCount, ForEach forEach)
   std::vector<std::size_t> fill(buckets.Start.begin(), buckets.Start.end() - 1);
   forEach([&](std::size_t key, const Value& value) { buckets.Values[fill[key]++] = value; });
   return buckets;
+}
+
+// Runs `count(p, regions)` for every point p on `threads`, each thread adding to its own copy
+// of the regions' counts, then adds the copies up: whole numbers, the same for any threads.
+template <typename CountAt>
+void CountPerPoint(std::size_t pointCount, int threads, std::vector<RegionTopology>& regions, const CountAt& countAt)
+{
+  const std::int64_t count = static_cast<std::int64_t>(pointCount);
+  std::vector<std::vector<RegionTopology>> local(static_cast<std::size_t>(threads), regions);
+  for (auto& copy : local)
+    for (RegionTopology& region : copy)
+      region = RegionTopology();
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<RegionTopology>& mine = local[ThreadId()];
+#pragma omp for schedule(dynamic, 4096)
+    for (std::int64_t p = 0; p < count; ++p)
+      countAt(static_cast<std::size_t>(p), mine);
+  }
+  for (const auto& copy : local)
+    for (std::size_t r = 0; r < regions.size(); ++r)
+    {
+      regions[r].SurfaceEuler += copy[r].SurfaceEuler;
+      regions[r].NonManifoldEdges += copy[r].NonManifoldEdges;
+      regions[r].NonManifoldVertices += copy[r].NonManifoldVertices;
+    }
 }
 
 // A triangle of one region's surface, its vertices ascending.
@@ -134,7 +161,7 @@ std::vector<SurfaceTriangle> SurfaceTriangles(const std::vector<MeshFace>& faces
 
 // Distinct surface edges per region (subtracted from the Euler sum) and those in more than two
 // of the region's triangles. Edges are bucketed on their smaller vertex.
-void CountEdges(const std::vector<SurfaceTriangle>& triangles, std::size_t pointCount,
+void CountEdges(const std::vector<SurfaceTriangle>& triangles, std::size_t pointCount, int threads,
   std::vector<RegionTopology>& regions)
 {
   using Far = std::pair<PointId, int>; // the larger vertex, the region
@@ -147,20 +174,19 @@ void CountEdges(const std::vector<SurfaceTriangle>& triangles, std::size_t point
       emit(static_cast<std::size_t>(p[1]), Far{ p[2], tri.Region });
     }
   });
-  for (std::size_t p = 0; p < pointCount; ++p)
-  {
+  CountPerPoint(pointCount, threads, regions, [&edges](std::size_t p, std::vector<RegionTopology>& counts) {
     const auto first = edges.Values.begin() + edges.Start[p];
     const auto last = edges.Values.begin() + edges.Start[p + 1];
     std::sort(first, last);
     for (auto run = first; run != last;)
     {
       const auto next = std::find_if(run, last, [run](const Far& e) { return e != *run; });
-      RegionTopology& region = regions[run->second];
+      RegionTopology& region = counts[run->second];
       --region.SurfaceEuler;
       region.NonManifoldEdges += (next - run) > 2;
       run = next;
     }
-  }
+  });
 }
 
 // Whether the triangles of one region at vertex `p` form more than one fan. `others` holds,
@@ -195,7 +221,7 @@ bool SeveralFans(const std::vector<std::array<PointId, 2>>& others,
 }
 
 // Distinct surface vertices per region (added to the Euler sum) and the non-manifold ones.
-void CountVertices(const std::vector<SurfaceTriangle>& triangles, std::size_t pointCount,
+void CountVertices(const std::vector<SurfaceTriangle>& triangles, std::size_t pointCount, int threads,
   std::vector<RegionTopology>& regions)
 {
   using Corner = std::pair<int, std::int64_t>; // region, triangle
@@ -204,10 +230,9 @@ void CountVertices(const std::vector<SurfaceTriangle>& triangles, std::size_t po
       for (const PointId p : triangles[t].Points)
         emit(static_cast<std::size_t>(p), Corner{ triangles[t].Region, static_cast<std::int64_t>(t) });
   });
-  std::vector<std::array<PointId, 2>> others;
-  std::vector<std::pair<PointId, std::int64_t>> scratch;
-  for (std::size_t p = 0; p < pointCount; ++p)
-  {
+  CountPerPoint(pointCount, threads, regions, [&](std::size_t p, std::vector<RegionTopology>& counts) {
+    thread_local std::vector<std::array<PointId, 2>> others;
+    thread_local std::vector<std::pair<PointId, std::int64_t>> scratch;
     const auto first = corners.Values.begin() + corners.Start[p];
     const auto last = corners.Values.begin() + corners.Start[p + 1];
     std::sort(first, last);
@@ -222,12 +247,12 @@ void CountVertices(const std::vector<SurfaceTriangle>& triangles, std::size_t po
             : q[1] == PointId(p)            ? std::array<PointId, 2>{ q[0], q[2] }
                                             : std::array<PointId, 2>{ q[0], q[1] });
       }
-      RegionTopology& region = regions[run->first];
+      RegionTopology& region = counts[run->first];
       ++region.SurfaceEuler;
       region.NonManifoldVertices += SeveralFans(others, scratch);
       run = next;
     }
-  }
+  });
 }
 } // namespace
 
@@ -238,13 +263,14 @@ bool MeshTopology::SolverReady() const
       [](const std::pair<const std::int32_t, RegionTopology>& tissue) { return tissue.second.Manifold(); });
 }
 
-MeshTopology MeasureMeshTopology(const TetMesh& mesh)
+MeshTopology MeasureMeshTopology(const TetMesh& mesh, int numberOfThreads)
 {
-  return MeasureMeshTopology(mesh, FindMeshFaces(mesh));
+  return MeasureMeshTopology(mesh, FindMeshFaces(mesh, numberOfThreads), numberOfThreads);
 }
 
-MeshTopology MeasureMeshTopology(const TetMesh& mesh, const std::vector<MeshFace>& faces)
+MeshTopology MeasureMeshTopology(const TetMesh& mesh, const std::vector<MeshFace>& faces, int numberOfThreads)
 {
+  const int threads = ThreadCount(numberOfThreads);
   std::vector<std::int32_t> labels = mesh.Labels;
   std::sort(labels.begin(), labels.end());
   labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
@@ -259,8 +285,8 @@ MeshTopology MeasureMeshTopology(const TetMesh& mesh, const std::vector<MeshFace
   CountFaceComponents(faces, regionOfTet, regions);
   CountVertexComponents(mesh, regionOfTet, regions);
   const std::vector<SurfaceTriangle> triangles = SurfaceTriangles(faces, regionOfTet, regions);
-  CountEdges(triangles, mesh.Points.size(), regions);
-  CountVertices(triangles, mesh.Points.size(), regions);
+  CountEdges(triangles, mesh.Points.size(), threads, regions);
+  CountVertices(triangles, mesh.Points.size(), threads, regions);
 
   MeshTopology topology;
   for (RegionTopology& region : regions)

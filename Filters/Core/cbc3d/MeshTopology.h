@@ -48,9 +48,10 @@ struct MeshTopology
 /// triangles at the vertex being in one fan when they share an edge through it. Linear time
 /// (bucketing on vertices); faces of more than two tets (a non-conforming mesh) count only
 /// their first two tets.
-MeshTopology MeasureMeshTopology(const TetMesh& mesh);
-/// The same from the mesh's faces (FindMeshFaces), when the caller has them already.
-MeshTopology MeasureMeshTopology(const TetMesh& mesh, const std::vector<MeshFace>& faces);
+MeshTopology MeasureMeshTopology(const TetMesh& mesh, int numberOfThreads = 1);
+/// The same from the mesh's faces (FindMeshFaces), when the caller has them already. The
+/// surfaces' edges and vertices are counted on `numberOfThreads` (0: all cores): the same counts.
+MeshTopology MeasureMeshTopology(const TetMesh& mesh, const std::vector<MeshFace>& faces, int numberOfThreads = 1);
 } // namespace cbc3d
 
 #endif

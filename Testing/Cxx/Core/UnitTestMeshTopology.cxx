@@ -142,27 +142,30 @@ TEST(MeshTopology, HingedTissueInsideAManifoldBody)
   // Tets 0 and 3 of the cube share only the diagonal: tissue 2 is hinged, the body is not.
   const cbc3d::TetMesh mesh = KuhnGrid(
     1, 1, 1, [](int, int, int) { return true; }, [](int, int, int, int t) { return t == 0 || t == 3 ? 2 : 1; });
-  const cbc3d::MeshTopology topology = cbc3d::MeasureMeshTopology(mesh);
-  ExpectManifoldBall(topology.Whole, 12);
-  for (const std::int32_t label : { 1, 2 })
+  for (const int threads : { 1, 3 }) // the edges and vertices are counted per thread, then summed
   {
-    const RegionTopology& r = topology.Tissues.at(label);
-    EXPECT_EQ(r.FaceComponents, 2) << label;
-    EXPECT_EQ(r.VertexComponents, 1) << label;
-    EXPECT_EQ(r.NonManifoldEdges, 1) << label; // the diagonal
-    // Two balls on one edge: tissue 2 V 6, E 11, F 8; tissue 1 (two wedges of two) V 8, E 17, F 12.
-    EXPECT_EQ(r.SurfaceEuler, 3) << label;
+    const cbc3d::MeshTopology topology = cbc3d::MeasureMeshTopology(mesh, threads);
+    ExpectManifoldBall(topology.Whole, 12);
+    for (const std::int32_t label : { 1, 2 })
+    {
+      const RegionTopology& r = topology.Tissues.at(label);
+      EXPECT_EQ(r.FaceComponents, 2) << label;
+      EXPECT_EQ(r.VertexComponents, 1) << label;
+      EXPECT_EQ(r.NonManifoldEdges, 1) << label; // the diagonal
+      // Two balls on one edge: tissue 2 V 6, E 11, F 8; tissue 1 (two wedges of two) V 8, E 17, F 12.
+      EXPECT_EQ(r.SurfaceEuler, 3) << label;
+    }
+    EXPECT_FALSE(topology.SolverReady());
   }
-  EXPECT_FALSE(topology.SolverReady());
 }
 
 TEST(MeshTopology, LargeBlockIsOneBall)
 {
-  // 50 x 50 x 40 cubes: 600,000 tets, the size the measure must handle quickly.
+  // 50 x 50 x 40 cubes: 600,000 tets, the size the measure must handle quickly (on 4 threads).
   const int n[3] = { 50, 50, 40 };
   const cbc3d::TetMesh mesh = KuhnGrid(
     n[0], n[1], n[2], [](int, int, int) { return true; }, [](int x, int, int, int) { return x < 25 ? 1 : 2; });
-  const cbc3d::MeshTopology topology = cbc3d::MeasureMeshTopology(mesh);
+  const cbc3d::MeshTopology topology = cbc3d::MeasureMeshTopology(mesh, 4);
   const std::int64_t squares = 2 * (n[0] * n[1] + n[1] * n[2] + n[2] * n[0]);
   ExpectManifoldBall(topology.Whole, 2 * squares);
   // Each half is a 25 x 50 x 40 block, the interface in both.
