@@ -130,7 +130,8 @@ Mesh a 3-D label image into a conforming multi-tissue tetrahedral mesh (CBC3D).
   --boundary-distance MM
                       refinement adds surface vertices until every boundary voxel
                       would end within MM of one after deformation (the Hausdorff
-                      measure); default 0 = 3/8 of the lattice size; negative = none
+                      measure), or a pass gains nothing by it; default 0 = 3/8 of
+                      the lattice size; negative = none
   --pattern P         target-point pattern for deformation: vertex, edge, face, none
                       (default edge)
   --targets T         where deformation targets sit: face (default; on the label

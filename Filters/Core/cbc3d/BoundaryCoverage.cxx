@@ -125,8 +125,9 @@ void BoundaryCoverage::FindTissueGaps(const Tissue& tissue, const std::vector<Fa
   const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Centres.size());
   std::vector<int> nearestFace(voxelCount, -1);
   const std::vector<int> nearestVertex = vertexGrid.NearestAnyOfAll(tissue.Centres, this->Threads);
-  double largest = 0.0; // a max reduction is exact: the same for any thread count
-#pragma omp parallel for schedule(dynamic, 1024) reduction(max : largest) num_threads(ThreadCount(this->Threads))
+  double largest = 0.0; // max and sum reductions are exact: the same for any thread count
+  std::int64_t far = 0;
+#pragma omp parallel for schedule(dynamic, 1024) reduction(max : largest) reduction(+ : far) num_threads(ThreadCount(this->Threads))
   for (std::int64_t i = 0; i < voxelCount; ++i)
   {
     const Eigen::Vector3d& centre = tissue.Centres[i];
@@ -135,9 +136,11 @@ void BoundaryCoverage::FindTissueGaps(const Tissue& tissue, const std::vector<Fa
     if (gap > distance)
     {
       nearestFace[i] = faceGrid.NearestAny(centre);
+      ++far;
     }
   }
   gaps.LargestGap = std::max(gaps.LargestGap, largest);
+  gaps.FarVoxels += far;
   std::vector<char> taken(faces.size(), 0);
   for (const int f : nearestFace) // in voxel order: the same for any thread count
   {

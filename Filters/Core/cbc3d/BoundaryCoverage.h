@@ -39,6 +39,15 @@ public:
     std::vector<Face> FarFaces;         // the surface face nearest to each far boundary voxel, once each
     std::vector<std::int64_t> StrandedTets; // tissue tets with a surface vertex that cannot reach the boundary
     double LargestGap = 0.0;            // the farthest boundary voxel from the predicted surface (mm)
+    std::int64_t FarVoxels = 0;         // boundary voxels farther than the distance from it
+
+    /// Whether these gaps are narrower than `before`'s: the farthest voxel nearer, or fewer
+    /// voxels far. Refinement for the distance stops at a pass that gains neither: the voxels
+    /// left far are beyond what splitting near them does (the nidus's thin vessels).
+    bool NarrowerThan(const Gaps& before) const
+    {
+      return this->LargestGap < before.LargestGap || this->FarVoxels < before.FarVoxels;
+    }
   };
 
   /// The boundary voxels of every tissue component of at least `minimumVoxels` voxels (specks

@@ -431,7 +431,16 @@ bool MarkForCoverage(const BoundaryCoverage& coverage, const RedGreenMesh& hiera
   const auto& x = hierarchy.Points();
   const BoundaryCoverage::Gaps gaps =
     coverage.Find(x, mesh.Tets, mesh.Labels, result.BoundaryDistance);
+  BoundaryCoverage::Gaps before;
+  before.LargestGap = result.LargestBoundaryGap;
+  before.FarVoxels = result.FarBoundaryVoxels;
   result.LargestBoundaryGap = gaps.LargestGap;
+  result.FarBoundaryVoxels = gaps.FarVoxels;
+  if (before.FarVoxels >= 0 && !gaps.NarrowerThan(before))
+  {
+    result.BoundaryDistanceStalled = true; // the later passes refine for fidelity alone
+    return false;
+  }
   const bool wanted = !gaps.FarFaces.empty() || !gaps.StrandedTets.empty();
   for (const std::int64_t t : gaps.StrandedTets)
   {
@@ -594,13 +603,15 @@ bool SplitOnePass(const LabelImage& image, const TissueComponents& components, c
   std::vector<char> marked = MarkForFidelity(image, components, params, mesh, fidelity, componentInMesh,
     hierarchy.Reds().size());
   std::vector<std::pair<PointId, PointId>> bisect;
-  const bool coverageWanted = coverage &&
+  const bool coverageWanted = coverage && !result.BoundaryDistanceStalled &&
     MarkForCoverage(*coverage, hierarchy, mesh, limits.MinimumEdge, result, marked, bisect);
   bool anyWanted = coverageWanted;
   const std::size_t splits = KeepSplittable(hierarchy, limits.MinimumEdge, marked, anyWanted);
   if (splits == 0 && bisect.empty())
   {
     result.StopReason = anyWanted ? "the tets left to refine are at the minimum edge length"
+      : coverage && result.BoundaryDistanceStalled
+      ? "every tissue reached the fidelity target, and refining for the boundary distance stopped gaining"
       : coverage ? "every tissue reached the fidelity target and the boundary distance"
                  : "every tissue reached the fidelity target";
     return false;

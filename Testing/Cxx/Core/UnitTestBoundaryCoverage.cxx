@@ -54,3 +54,21 @@ TEST(BoundaryCoverage, BoundsTheDistanceFromBoundaryVoxelsToTheDeformedSurface)
   EXPECT_GT(off.first, bound + slack); // the lattice's faces alone leave voxels farther
   EXPECT_GT(on.second, off.second);
 }
+
+TEST(BoundaryCoverage, GapsNarrowWhenTheFarthestComesNearerOrFewerStayFar)
+{
+  cbc3d::BoundaryCoverage::Gaps before, after;
+  before.LargestGap = 5.15;
+  before.FarVoxels = 4;
+  after = before;
+  EXPECT_FALSE(after.NarrowerThan(before)); // the nidus's passes 5 to 7: nothing gained
+  after.FarVoxels = 5;
+  EXPECT_FALSE(after.NarrowerThan(before));
+  after.LargestGap = 5.14;
+  EXPECT_TRUE(after.NarrowerThan(before)); // the farthest came nearer, though one more is far
+  after = before;
+  after.FarVoxels = 3;
+  EXPECT_TRUE(after.NarrowerThan(before)); // the brain at defaults: the farthest stayed at
+  after.LargestGap = 6.0;                  // 2.72 mm for three passes while 33, 6, 1 stayed far
+  EXPECT_TRUE(after.NarrowerThan(before));
+}
