@@ -710,6 +710,14 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   {
     result.Tissues.push_back(entry.second);
   }
+  // The passes ended with every tissue at the target; the sound labels may have taken some
+  // below it (the 3 mm head's CSF and grey matter): the reason says so, as the figures will.
+  const bool belowTarget = std::any_of(result.Tissues.begin(), result.Tissues.end(),
+    [&](const TissueFidelity& t) { return t.F1 < params.Fidelity || t.F2 < params.Fidelity; });
+  if (belowTarget && result.StopReason.rfind("every tissue reached the fidelity target", 0) == 0)
+  {
+    result.StopReason += "; making the labels sound took some below it";
+  }
   if (out.Tets.empty())
   {
     return Status::Error("no tet holds a majority of tissue voxels; use a smaller lattice size");
