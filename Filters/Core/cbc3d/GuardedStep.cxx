@@ -5,6 +5,8 @@
 #include "cbc3d/VolumeAims.h"
 
 #include <cmath>
+#include <map>
+#include <utility>
 
 namespace cbc3d
 {
@@ -105,22 +107,26 @@ StepOutcome RestoreTissueVolumes(const TissueVolumeKeeper& volumes, const TetMes
   const std::vector<PointId>& surface, std::vector<Eigen::Vector3d>& x, double bound, int threads,
   FidelityGuard& fidelity, const std::function<bool()>& keepGoing)
 {
+  std::map<std::int32_t, double> now = volumes.Volumes(x); // measured once a round
+  if (volumes.LargestRelativeShortfall(now) <= VolumeTolerance)
+  {
+    return StepOutcome::Made;
+  }
   std::vector<char> moving(x.size(), 0);
   for (const PointId p : surface)
   {
     moving[p] = 1;
   }
+  const TissueVolumeKeeper::AreaSums sums(volumes, moving);
+  VolumeAims aims(volumes.TargetVolumes());
   std::vector<Eigen::Vector3d> trial;
   std::vector<double> share;
-  VolumeAims aims(volumes.TargetVolumes());
-  const TissueVolumeKeeper::AreaSums sums(volumes, moving);
   // Each round's step is shortened where tets would spoil, so a few rounds may be needed.
-  for (int round = 0; round < 8 && volumes.LargestRelativeShortfall(x) > VolumeTolerance; ++round)
+  for (int round = 0; round < 8 && volumes.LargestRelativeShortfall(now) > VolumeTolerance; ++round)
   {
-    const std::map<std::int32_t, double> before = volumes.Volumes(x);
-    const std::map<std::int32_t, double> aimed = aims.Aims(before);
+    const std::map<std::int32_t, double> aimed = aims.Aims(now);
     std::vector<Eigen::Vector3d> goals = x;
-    volumes.OffsetGoals(goals, sums, aimed, threads);
+    volumes.OffsetGoals(goals, sums, now, aimed, threads);
     const StepOutcome outcome = GuardedStep(mesh, x, [&](std::size_t p) { return Eigen::Vector3d(goals[p] - x[p]); },
       bound, threads, fidelity, keepGoing, trial, share);
     if (outcome != StepOutcome::Made)
@@ -129,7 +135,9 @@ StepOutcome RestoreTissueVolumes(const TissueVolumeKeeper& volumes, const TetMes
     }
     x.swap(trial);
     fidelity.Accept(x, keepGoing);
-    aims.Observe(before, aimed, volumes.Volumes(x));
+    std::map<std::int32_t, double> after = volumes.Volumes(x);
+    aims.Observe(now, aimed, after);
+    now = std::move(after);
   }
   return StepOutcome::Made;
 }

@@ -116,6 +116,7 @@ std::size_t InteriorSmoothing::Smooth(
   for (int sweep = 0; sweep < sweeps; ++sweep)
   {
     std::size_t moved = 0;
+    RegionErrors errors; // out of memory in a thread: thrown again below, not std::terminate
 #pragma omp parallel num_threads(ThreadCount(threads)) reduction(+ : moved)
     {
       std::vector<double> trial;
@@ -124,9 +125,11 @@ std::size_t InteriorSmoothing::Smooth(
         const std::int64_t count = static_cast<std::int64_t>(level.size());
 #pragma omp for schedule(static)
         for (std::int64_t i = 0; i < count; ++i)
-          moved += this->TryMove(level[i], x, badness, trial);
+          if (!errors.Failed())
+            errors.Run([&] { moved += this->TryMove(level[i], x, badness, trial); });
       }
     }
+    errors.Rethrow();
     moves += moved;
     if (moved == 0)
     {

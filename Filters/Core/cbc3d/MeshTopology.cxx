@@ -39,29 +39,40 @@ Buckets<Value> BucketBy(std::size_t keyCount, ForEach forEach)
   return buckets;
 }
 
-// Runs `count(p, regions)` for every point p on `threads`, each thread adding to its own copy
-// of the regions' counts, then adds the copies up: whole numbers, the same for any threads.
+// One thread's share of a count per point: its own counts per region, and scratch for a
+// vertex's fans.
+struct ThreadCounts
+{
+  std::vector<RegionTopology> Regions;
+  std::vector<std::array<PointId, 2>> Others;
+  std::vector<std::pair<PointId, std::int64_t>> Scratch;
+};
+
+// Runs `countAt(p, counts)` for every point p on `threads`, each thread with its own counts,
+// then adds them up: whole numbers, the same for any threads. An exception in a thread (out of
+// memory) is thrown again here.
 template <typename CountAt>
 void CountPerPoint(std::size_t pointCount, int threads, std::vector<RegionTopology>& regions, const CountAt& countAt)
 {
   const std::int64_t count = static_cast<std::int64_t>(pointCount);
-  std::vector<std::vector<RegionTopology>> local(static_cast<std::size_t>(threads), regions);
-  for (auto& copy : local)
-    for (RegionTopology& region : copy)
-      region = RegionTopology();
+  std::vector<ThreadCounts> local(static_cast<std::size_t>(threads));
+  RegionErrors errors;
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<RegionTopology>& mine = local[ThreadId()];
+    ThreadCounts& mine = local[ThreadId()];
+    errors.Run([&] { mine.Regions.resize(regions.size()); });
 #pragma omp for schedule(dynamic, 4096)
     for (std::int64_t p = 0; p < count; ++p)
-      countAt(static_cast<std::size_t>(p), mine);
+      if (!errors.Failed())
+        errors.Run([&] { countAt(static_cast<std::size_t>(p), mine); });
   }
-  for (const auto& copy : local)
+  errors.Rethrow();
+  for (const ThreadCounts& counts : local)
     for (std::size_t r = 0; r < regions.size(); ++r)
     {
-      regions[r].SurfaceEuler += copy[r].SurfaceEuler;
-      regions[r].NonManifoldEdges += copy[r].NonManifoldEdges;
-      regions[r].NonManifoldVertices += copy[r].NonManifoldVertices;
+      regions[r].SurfaceEuler += counts.Regions[r].SurfaceEuler;
+      regions[r].NonManifoldEdges += counts.Regions[r].NonManifoldEdges;
+      regions[r].NonManifoldVertices += counts.Regions[r].NonManifoldVertices;
     }
 }
 
@@ -174,14 +185,14 @@ void CountEdges(const std::vector<SurfaceTriangle>& triangles, std::size_t point
       emit(static_cast<std::size_t>(p[1]), Far{ p[2], tri.Region });
     }
   });
-  CountPerPoint(pointCount, threads, regions, [&edges](std::size_t p, std::vector<RegionTopology>& counts) {
+  CountPerPoint(pointCount, threads, regions, [&edges](std::size_t p, ThreadCounts& counts) {
     const auto first = edges.Values.begin() + edges.Start[p];
     const auto last = edges.Values.begin() + edges.Start[p + 1];
     std::sort(first, last);
     for (auto run = first; run != last;)
     {
       const auto next = std::find_if(run, last, [run](const Far& e) { return e != *run; });
-      RegionTopology& region = counts[run->second];
+      RegionTopology& region = counts.Regions[run->second];
       --region.SurfaceEuler;
       region.NonManifoldEdges += (next - run) > 2;
       run = next;
@@ -230,9 +241,8 @@ void CountVertices(const std::vector<SurfaceTriangle>& triangles, std::size_t po
       for (const PointId p : triangles[t].Points)
         emit(static_cast<std::size_t>(p), Corner{ triangles[t].Region, static_cast<std::int64_t>(t) });
   });
-  CountPerPoint(pointCount, threads, regions, [&](std::size_t p, std::vector<RegionTopology>& counts) {
-    thread_local std::vector<std::array<PointId, 2>> others;
-    thread_local std::vector<std::pair<PointId, std::int64_t>> scratch;
+  CountPerPoint(pointCount, threads, regions, [&](std::size_t p, ThreadCounts& counts) {
+    std::vector<std::array<PointId, 2>>& others = counts.Others;
     const auto first = corners.Values.begin() + corners.Start[p];
     const auto last = corners.Values.begin() + corners.Start[p + 1];
     std::sort(first, last);
@@ -247,9 +257,9 @@ void CountVertices(const std::vector<SurfaceTriangle>& triangles, std::size_t po
             : q[1] == PointId(p)            ? std::array<PointId, 2>{ q[0], q[2] }
                                             : std::array<PointId, 2>{ q[0], q[1] });
       }
-      RegionTopology& region = counts[run->first];
+      RegionTopology& region = counts.Regions[run->first];
       ++region.SurfaceEuler;
-      region.NonManifoldVertices += SeveralFans(others, scratch);
+      region.NonManifoldVertices += SeveralFans(others, counts.Scratch);
       run = next;
     }
   });

@@ -567,6 +567,9 @@ std::unique_ptr<BoundaryCoverage> MakeCoverage(const LabelImage& image, const Ti
     hierarchy.ShortestEdge(0), params.NumberOfThreads);
 }
 
+// How a stop reason begins when no tissue's fidelity wants a split.
+const std::string ReachedFidelity = "every tissue reached the fidelity target";
+
 // Unmarks the marked leaves at the depth limit (a split would make edges shorter than
 // `minimumEdge`) and counts the rest; `anyWanted` becomes true where any leaf was marked.
 std::size_t KeepSplittable(const RedGreenMesh& hierarchy, double minimumEdge, std::vector<char>& marked,
@@ -609,11 +612,11 @@ bool SplitOnePass(const LabelImage& image, const TissueComponents& components, c
   const std::size_t splits = KeepSplittable(hierarchy, limits.MinimumEdge, marked, anyWanted);
   if (splits == 0 && bisect.empty())
   {
-    result.StopReason = anyWanted ? "the tets left to refine are at the minimum edge length"
+    result.StopReason = anyWanted ? std::string("the tets left to refine are at the minimum edge length")
       : coverage && result.BoundaryDistanceStalled
-      ? "every tissue reached the fidelity target, and refining for the boundary distance stopped gaining"
-      : coverage ? "every tissue reached the fidelity target and the boundary distance"
-                 : "every tissue reached the fidelity target";
+      ? ReachedFidelity + ", and refining for the boundary distance stopped gaining"
+      : coverage ? ReachedFidelity + " and the boundary distance"
+                 : ReachedFidelity;
     return false;
   }
   // Each red split makes 8 tets of one; closure adds some more.
@@ -714,7 +717,7 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   // below it (the 3 mm head's CSF and grey matter): the reason says so, as the figures will.
   const bool belowTarget = std::any_of(result.Tissues.begin(), result.Tissues.end(),
     [&](const TissueFidelity& t) { return t.F1 < params.Fidelity || t.F2 < params.Fidelity; });
-  if (belowTarget && result.StopReason.rfind("every tissue reached the fidelity target", 0) == 0)
+  if (belowTarget && result.StopReason.rfind(ReachedFidelity, 0) == 0)
   {
     result.StopReason += "; making the labels sound took some below it";
   }

@@ -71,7 +71,11 @@ std::map<std::int32_t, double> TissueVolumeKeeper::Volumes(const std::vector<Eig
 
 double TissueVolumeKeeper::LargestRelativeShortfall(const std::vector<Eigen::Vector3d>& x) const
 {
-  const auto volumes = this->Volumes(x);
+  return this->LargestRelativeShortfall(this->Volumes(x));
+}
+
+double TissueVolumeKeeper::LargestRelativeShortfall(const std::map<std::int32_t, double>& volumes) const
+{
   double largest = 0.0;
   for (const auto& [label, target] : this->Targets)
   {
@@ -213,18 +217,18 @@ Eigen::VectorXd TissueVolumeKeeper::InterfaceOffsets(const std::vector<PointPair
 double TissueVolumeKeeper::OffsetGoals(std::vector<Eigen::Vector3d>& goals, const std::vector<char>& moving,
   const std::map<std::int32_t, double>& aims) const
 {
-  return this->OffsetGoals(goals, AreaSums(*this, moving), aims, 1);
+  return this->OffsetGoals(goals, AreaSums(*this, moving), this->Volumes(goals), aims, 1);
 }
 
 double TissueVolumeKeeper::OffsetGoals(std::vector<Eigen::Vector3d>& goals, const AreaSums& sums,
-  const std::map<std::int32_t, double>& aims, int threads) const
+  const std::map<std::int32_t, double>& volumes, const std::map<std::int32_t, double>& aims, int threads) const
 {
   if (this->Faces.empty() || this->Targets.empty())
   {
     return 0.0;
   }
   const std::vector<PointPairArea> areas = sums.At(goals, threads);
-  const Eigen::VectorXd offsets = this->InterfaceOffsets(areas, this->Volumes(goals), aims);
+  const Eigen::VectorXd offsets = this->InterfaceOffsets(areas, volumes, aims);
   for (const PointPairArea& entry : areas)
   {
     const double length = entry.Area.norm();

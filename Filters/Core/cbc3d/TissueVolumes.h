@@ -39,6 +39,8 @@ public:
 
   /// The largest relative difference between a tissue's volume at `x` and its target.
   double LargestRelativeShortfall(const std::vector<Eigen::Vector3d>& x) const;
+  /// The same from the tissues' volumes (Volumes).
+  double LargestRelativeShortfall(const std::map<std::int32_t, double>& volumes) const;
 
   /// The volume each tissue should have (mm^3).
   const std::map<std::int32_t, double>& TargetVolumes() const { return this->Targets; }
@@ -75,9 +77,10 @@ public:
   /// interface offset applied (mm).
   double OffsetGoals(std::vector<Eigen::Vector3d>& goals, const std::vector<char>& moving,
     const std::map<std::int32_t, double>& aims = {}) const;
-  /// The same with the sums planned for the moving points, on `threads`.
+  /// The same with the sums planned for the moving points and the tissues' volumes at `goals`
+  /// (Volumes(goals)), on `threads`.
   double OffsetGoals(std::vector<Eigen::Vector3d>& goals, const AreaSums& sums,
-    const std::map<std::int32_t, double>& aims, int threads) const;
+    const std::map<std::int32_t, double>& volumes, const std::map<std::int32_t, double>& aims, int threads) const;
 
 private:
   struct InterfaceFace
