@@ -419,26 +419,35 @@ std::vector<char> MarkForFidelity(const LabelImage& image, const TissueComponent
   return marked;
 }
 
-// Where the surface would stay far from the image boundary: a new surface vertex on the
-// longest edge of the face nearest to a far boundary voxel (a green split of the tets around
-// the edge, into `bisect`), or a red split of the leaf where that edge is not one of the leaf's
-// own; and a red split of the tets with a vertex that cannot reach the boundary. Returns
-// whether any split was wanted (at the depth limit or not).
-bool MarkForCoverage(const BoundaryCoverage& coverage, const RedGreenMesh& hierarchy,
-  const LabelledMesh& mesh, double minimumEdge, RefinementResult& result, std::vector<char>& marked,
+// How refining for the boundary distance stands between passes: the gaps the last pass found
+// (FarVoxels -1: none looked for yet), and whether a pass stopped gaining.
+struct CoverageProgress
+{
+  double LargestGap = 0.0;
+  std::int64_t FarVoxels = -1;
+  bool Stalled = false; // the later passes refine for fidelity alone
+};
+
+// Where the surface would stay far from the image boundary (more than `distance`): a new
+// surface vertex on the longest edge of the face nearest to a far boundary voxel (a green split
+// of the tets around the edge, into `bisect`), or a red split of the leaf where that edge is not
+// one of the leaf's own; and a red split of the tets with a vertex that cannot reach the
+// boundary. Returns whether any split was wanted (at the depth limit or not); none once a pass
+// brings neither the farthest voxel nearer nor fewer voxels far (`progress` then stalls).
+bool MarkForCoverage(const BoundaryCoverage& coverage, double distance, const RedGreenMesh& hierarchy,
+  const LabelledMesh& mesh, double minimumEdge, CoverageProgress& progress, std::vector<char>& marked,
   std::vector<std::pair<PointId, PointId>>& bisect)
 {
   const auto& x = hierarchy.Points();
-  const BoundaryCoverage::Gaps gaps =
-    coverage.Find(x, mesh.Tets, mesh.Labels, result.BoundaryDistance);
+  const BoundaryCoverage::Gaps gaps = coverage.Find(x, mesh.Tets, mesh.Labels, distance);
   BoundaryCoverage::Gaps before;
-  before.LargestGap = result.LargestBoundaryGap;
-  before.FarVoxels = result.FarBoundaryVoxels;
-  result.LargestBoundaryGap = gaps.LargestGap;
-  result.FarBoundaryVoxels = gaps.FarVoxels;
+  before.LargestGap = progress.LargestGap;
+  before.FarVoxels = progress.FarVoxels;
+  progress.LargestGap = gaps.LargestGap;
+  progress.FarVoxels = gaps.FarVoxels;
   if (before.FarVoxels >= 0 && !gaps.NarrowerThan(before))
   {
-    result.BoundaryDistanceStalled = true; // the later passes refine for fidelity alone
+    progress.Stalled = true;
     return false;
   }
   const bool wanted = !gaps.FarFaces.empty() || !gaps.StrandedTets.empty();
@@ -567,8 +576,49 @@ std::unique_ptr<BoundaryCoverage> MakeCoverage(const LabelImage& image, const Ti
     hierarchy.ShortestEdge(0), params.NumberOfThreads);
 }
 
+// Why the passes ended. The words come last (StopReason), when the fidelity after the sound
+// labels is known as well.
+struct PassesEnd
+{
+  enum Kind
+  {
+    NoRefinementAsked, // fidelity 0
+    TargetsReached,    // no tissue's fidelity (nor the boundary distance) wants a split
+    AtMinimumEdge,     // splits are wanted, at tets that may not be split
+    MemoryLimit        // the splits would pass it
+  };
+  Kind End = TargetsReached;
+  std::int64_t ExpectedTets = 0; // with MemoryLimit: the tets the splits would have made
+};
+
 // How a stop reason begins when no tissue's fidelity wants a split.
 const std::string ReachedFidelity = "every tissue reached the fidelity target";
+
+// Why refinement ended, in words: how the passes ended, how refining for the boundary distance
+// did (`coverage`: whether there was any), and whether making the labels sound took a tissue
+// below the fidelity target after the passes had reached it (the 3 mm head's CSF and grey matter).
+std::string StopReason(const PassesEnd& passes, bool coverage, const CoverageProgress& progress, bool belowTarget)
+{
+  std::ostringstream reason;
+  switch (passes.End)
+  {
+    case PassesEnd::NoRefinementAsked:
+      return "no refinement asked (fidelity 0)";
+    case PassesEnd::AtMinimumEdge:
+      return "the tets left to refine are at the minimum edge length";
+    case PassesEnd::MemoryLimit:
+      reason << "stopped before exceeding the memory limit (about " << passes.ExpectedTets << " tets)";
+      return reason.str();
+    case PassesEnd::TargetsReached:
+      break;
+  }
+  reason << ReachedFidelity;
+  if (coverage)
+    reason << (progress.Stalled ? ", and refining for the boundary distance stopped gaining" : " and the boundary distance");
+  if (belowTarget)
+    reason << "; making the labels sound took some below it";
+  return reason.str();
+}
 
 // Unmarks the marked leaves at the depth limit (a split would make edges shorter than
 // `minimumEdge`) and counts the rest; `anyWanted` becomes true where any leaf was marked.
@@ -596,36 +646,31 @@ struct PassLimits
 };
 
 // Marks the reds that fidelity or coverage wants split (and that may be) and the edges coverage
-// bisects, and splits them; false, with the reason in `result`, when there is nothing left to
-// split or the splits would pass the memory limit.
+// bisects, and splits them; false, with how the passes ended in `end`, when there is nothing
+// left to split or the splits would pass the memory limit.
 bool SplitOnePass(const LabelImage& image, const TissueComponents& components, const RefinementParams& params,
-  const BoundaryCoverage* coverage, const PassLimits& limits, const std::map<std::int32_t, TissueFidelity>& fidelity,
-  const std::vector<char>& componentInMesh, const LabelledMesh& mesh, RedGreenMesh& hierarchy,
-  RefinementResult& result)
+  const BoundaryCoverage* coverage, double distance, const PassLimits& limits,
+  const std::map<std::int32_t, TissueFidelity>& fidelity, const std::vector<char>& componentInMesh,
+  const LabelledMesh& mesh, RedGreenMesh& hierarchy, CoverageProgress& progress, PassesEnd& end)
 {
   std::vector<char> marked = MarkForFidelity(image, components, params, mesh, fidelity, componentInMesh,
     hierarchy.Reds().size());
   std::vector<std::pair<PointId, PointId>> bisect;
-  const bool coverageWanted = coverage && !result.BoundaryDistanceStalled &&
-    MarkForCoverage(*coverage, hierarchy, mesh, limits.MinimumEdge, result, marked, bisect);
+  const bool coverageWanted = coverage && !progress.Stalled &&
+    MarkForCoverage(*coverage, distance, hierarchy, mesh, limits.MinimumEdge, progress, marked, bisect);
   bool anyWanted = coverageWanted;
   const std::size_t splits = KeepSplittable(hierarchy, limits.MinimumEdge, marked, anyWanted);
   if (splits == 0 && bisect.empty())
   {
-    result.StopReason = anyWanted ? std::string("the tets left to refine are at the minimum edge length")
-      : coverage && result.BoundaryDistanceStalled
-      ? ReachedFidelity + ", and refining for the boundary distance stopped gaining"
-      : coverage ? ReachedFidelity + " and the boundary distance"
-                 : ReachedFidelity;
+    end.End = anyWanted ? PassesEnd::AtMinimumEdge : PassesEnd::TargetsReached;
     return false;
   }
   // Each red split makes 8 tets of one; closure adds some more.
   const double expectedTets = double(mesh.Tets.size()) + 10.0 * double(splits) + 6.0 * double(bisect.size());
   if (expectedTets * BytesPerTet > double(limits.MemoryBytes))
   {
-    std::ostringstream reason;
-    reason << "stopped before exceeding the memory limit (about " << std::llround(expectedTets) << " tets)";
-    result.StopReason = reason.str();
+    end.End = PassesEnd::MemoryLimit;
+    end.ExpectedTets = std::llround(expectedTets);
     return false;
   }
   for (std::size_t red = 0; red < marked.size(); ++red)
@@ -668,6 +713,8 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   LabelledMesh mesh;
   std::map<std::int32_t, TissueFidelity> fidelity;
   std::vector<char> componentInMesh;
+  CoverageProgress coverageProgress;
+  PassesEnd passesEnd;
   const int expectedPasses = 2 + static_cast<int>(std::ceil(std::log2(
     std::max(1.0, hierarchy.ShortestEdge(0) / minimumEdge))));
 
@@ -683,12 +730,13 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
       image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
     if (params.Fidelity == 0.0)
     {
-      result.StopReason = "no refinement asked (fidelity 0)";
+      passesEnd.End = PassesEnd::NoRefinementAsked;
       break;
     }
 
-    if (!SplitOnePass(image, components, params, coverage.get(), PassLimits{ minimumEdge, memoryLimit }, fidelity,
-          componentInMesh, mesh, hierarchy, result))
+    if (!SplitOnePass(image, components, params, coverage.get(), result.BoundaryDistance,
+          PassLimits{ minimumEdge, memoryLimit }, fidelity, componentInMesh, mesh, hierarchy, coverageProgress,
+          passesEnd))
     {
       break;
     }
@@ -713,14 +761,10 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   {
     result.Tissues.push_back(entry.second);
   }
-  // The passes ended with every tissue at the target; the sound labels may have taken some
-  // below it (the 3 mm head's CSF and grey matter): the reason says so, as the figures will.
+  result.LargestBoundaryGap = coverageProgress.LargestGap;
   const bool belowTarget = std::any_of(result.Tissues.begin(), result.Tissues.end(),
     [&](const TissueFidelity& t) { return t.F1 < params.Fidelity || t.F2 < params.Fidelity; });
-  if (belowTarget && result.StopReason.rfind(ReachedFidelity, 0) == 0)
-  {
-    result.StopReason += "; making the labels sound took some below it";
-  }
+  result.StopReason = StopReason(passesEnd, coverage != nullptr, coverageProgress, belowTarget);
   if (out.Tets.empty())
   {
     return Status::Error("no tet holds a majority of tissue voxels; use a smaller lattice size");

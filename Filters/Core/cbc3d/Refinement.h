@@ -57,8 +57,6 @@ struct RefinementResult
   std::vector<TissueFidelity> Tissues; // ascending label
   double BoundaryDistance = 0.0;       // the bound used (mm); 0 when none
   double LargestBoundaryGap = 0.0;     // farthest boundary voxel from the predicted surface (mm)
-  std::int64_t FarBoundaryVoxels = -1; // boundary voxels farther than BoundaryDistance from it (-1: not looked)
-  bool BoundaryDistanceStalled = false; // a pass brought neither the farthest voxel nearer nor fewer far
   int Passes = 0;                      // refinement passes that split tets
   int DeepestLevel = 0;                // red level of the finest tets
   std::int64_t Relabelled = 0;         // tets relabelled for a sound mesh (see SoundLabels.h)
