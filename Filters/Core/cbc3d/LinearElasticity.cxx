@@ -66,46 +66,62 @@ struct BlockPattern
   std::vector<PointId> Neighbours;
 };
 
-void NeighboursOf(const TetMesh& mesh, const PointTets& around, std::int64_t p, std::vector<PointId>& list)
+// Point p's neighbours, itself included, each once, in `list` (unsorted). `seen` is the
+// thread's own, one entry per point: q is listed for p when seen[q] == p. (Each neighbour comes
+// from six tets or so: marking, not sorting all the tets' corners, finds each once.)
+void ListNeighbours(const TetMesh& mesh, const PointTets& around, std::int64_t p, std::vector<std::int64_t>& seen,
+  std::vector<PointId>& list)
 {
-  list.clear();
+  list.assign(1, static_cast<PointId>(p)); // a point in no tet still has its own block
+  seen[p] = p;
   for (std::int64_t i = around.Start[p]; i < around.Start[p + 1]; ++i)
     for (const PointId q : mesh.Tets[around.Tets[i]])
-      list.push_back(q);
-  list.push_back(p); // a point in no tet still has its own block
-  std::sort(list.begin(), list.end());
-  list.erase(std::unique(list.begin(), list.end()), list.end());
+      if (seen[q] != p)
+      {
+        seen[q] = p;
+        list.push_back(q);
+      }
 }
 
-// Counted, then filled, each pass in parallel over the points.
+// Calls visit(p, list) for every point p, on the threads, with `list` its neighbours
+// (ListNeighbours; the visit may reorder them).
+template <typename Visit>
+void ForEachNeighbourList(const TetMesh& mesh, const PointTets& around, int threads, const Visit& visit)
+{
+  const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
+  RegionErrors errors;
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<std::int64_t> seen;
+    std::vector<PointId> list;
+    errors.Run([&] { seen.assign(n, -1); }); // every thread meets the loop below, failed or not
+#pragma omp for schedule(dynamic, 1024)
+    for (std::int64_t p = 0; p < n; ++p)
+      if (!errors.Failed())
+        errors.Run([&] {
+          ListNeighbours(mesh, around, p, seen, list);
+          visit(p, list);
+        });
+  }
+  errors.Rethrow();
+}
+
+// Counted, then filled.
 BlockPattern FindBlockPattern(const TetMesh& mesh, const PointTets& around, int threads)
 {
   const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
   BlockPattern pattern;
   pattern.RowStart.assign(n + 1, 0);
-#pragma omp parallel num_threads(threads)
-  {
-    std::vector<PointId> list;
-#pragma omp for schedule(dynamic, 1024)
-    for (std::int64_t p = 0; p < n; ++p)
-    {
-      NeighboursOf(mesh, around, p, list);
-      pattern.RowStart[p + 1] = static_cast<std::int64_t>(list.size());
-    }
-  }
+  ForEachNeighbourList(mesh, around, threads, [&](std::int64_t p, std::vector<PointId>& list) {
+    pattern.RowStart[p + 1] = static_cast<std::int64_t>(list.size());
+  });
   for (std::int64_t p = 0; p < n; ++p)
     pattern.RowStart[p + 1] += pattern.RowStart[p];
   pattern.Neighbours.resize(pattern.RowStart[n]);
-#pragma omp parallel num_threads(threads)
-  {
-    std::vector<PointId> list;
-#pragma omp for schedule(dynamic, 1024)
-    for (std::int64_t p = 0; p < n; ++p)
-    {
-      NeighboursOf(mesh, around, p, list);
-      std::copy(list.begin(), list.end(), pattern.Neighbours.begin() + pattern.RowStart[p]);
-    }
-  }
+  ForEachNeighbourList(mesh, around, threads, [&](std::int64_t p, std::vector<PointId>& list) {
+    std::sort(list.begin(), list.end());
+    std::copy(list.begin(), list.end(), pattern.Neighbours.begin() + pattern.RowStart[p]);
+  });
   return pattern;
 }
 

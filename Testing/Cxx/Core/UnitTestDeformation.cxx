@@ -108,6 +108,11 @@ TEST(LinearElasticity, ABlockOfSeveralBatchesIsTheSameForAnyThreadsAndKnowsItsEn
   const Eigen::SparseMatrix<double> serial = cbc3d::AssembleStiffness(mesh, {}, material, 1);
   const Eigen::SparseMatrix<double> parallel = cbc3d::AssembleStiffness(mesh, {}, material, 3);
   ASSERT_EQ(serial.nonZeros(), parallel.nonZeros());
+  // A 3x3 block for each point and two for each edge. Kuhn's cubes have their 12 axis edges,
+  // one diagonal on each face and one through the cube.
+  const std::int64_t points = (n + 1) * (n + 1) * (n + 1);
+  const std::int64_t edges = 3 * n * (n + 1) * (n + 1) + 3 * n * n * (n + 1) + n * n * n;
+  EXPECT_EQ(serial.nonZeros(), 9 * (points + 2 * edges));
   EXPECT_TRUE(std::equal(serial.valuePtr(), serial.valuePtr() + serial.nonZeros(), parallel.valuePtr()));
   EXPECT_TRUE(std::equal(serial.innerIndexPtr(), serial.innerIndexPtr() + serial.nonZeros(), parallel.innerIndexPtr()));
   const Eigen::VectorXd shift = Field(mesh, [](const Eigen::Vector3d&) { return Eigen::Vector3d(0.3, -1.0, 2.0); });
