@@ -42,18 +42,20 @@ std::vector<LabelBox> TissueBoxes(const LabelImage& image, int threads)
   const std::array<int, 3> first = image.StoredLower, upper = image.StoredUpper();
   const int count = ThreadCount(threads);
   std::vector<std::vector<LabelBox>> perThread(count);
+  RegionErrors errors; // a new label's box may not find the memory
 #pragma omp parallel for schedule(dynamic, 1) num_threads(count)
   for (int k = first[2]; k <= upper[2]; ++k)
   {
     std::vector<LabelBox>& boxes = perThread[ThreadId()];
-    for (int j = first[1]; j <= upper[1]; ++j)
-    {
-      image.ForEachRun(j, k, first[0], upper[0], [&](std::int32_t label, int voxels, int x) {
-        if (!image.IsBackground(label))
-          Widen(boxes, LabelBox{ label, { x, j, k }, { x + voxels - 1, j, k } });
+    for (int j = first[1]; j <= upper[1] && !errors.Failed(); ++j)
+      errors.Run([&] {
+        image.ForEachRun(j, k, first[0], upper[0], [&](std::int32_t label, int voxels, int x) {
+          if (!image.IsBackground(label))
+            Widen(boxes, LabelBox{ label, { x, j, k }, { x + voxels - 1, j, k } });
+        });
       });
-    }
   }
+  errors.Rethrow();
   std::vector<LabelBox> boxes;
   for (const std::vector<LabelBox>& some : perThread)
     for (const LabelBox& box : some)
@@ -181,13 +183,16 @@ EulerSums VoxelSurfaceEuler(const LabelImage& image, const std::array<int, 3>& l
   const int slices = upper[2] - lower[2] + 2; // corner slices lower[2] .. upper[2] + 1
   const int slabs = std::min(slices, 8 * ThreadCount(threads));
   std::vector<EulerSums> perSlab(slabs);
+  RegionErrors errors; // each slab keeps a few slices of corners
 #pragma omp parallel for schedule(dynamic, 1) num_threads(ThreadCount(threads))
   for (int slab = 0; slab < slabs; ++slab)
   {
     const int first = lower[2] + int(std::int64_t(slices) * slab / slabs);
     const int last = lower[2] + int(std::int64_t(slices) * (slab + 1) / slabs) - 1;
-    perSlab[slab] = SlabEuler(image, lower, upper, first, last, inside);
+    if (!errors.Failed())
+      errors.Run([&] { perSlab[slab] = SlabEuler(image, lower, upper, first, last, inside); });
   }
+  errors.Rethrow();
   EulerSums sums;
   for (const EulerSums& slab : perSlab)
     sums += slab;

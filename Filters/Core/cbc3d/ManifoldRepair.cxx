@@ -512,23 +512,30 @@ std::vector<char> ManifoldVertices(const Repairer& repairer, std::size_t pointCo
 {
   std::vector<char> manifold(pointCount, 0);
   const std::int64_t count = static_cast<std::int64_t>(pointCount);
+  RegionErrors errors;
 #pragma omp parallel num_threads(threads)
   {
     VertexStar star;
-    std::vector<int> localOf(repairer.TetCount(), -1);
+    std::vector<int> localOf;
     StarViolation violation;
+    errors.Run([&] { localOf.assign(repairer.TetCount(), -1); }); // every thread meets the loop
 #pragma omp for schedule(dynamic, 1024)
     for (std::int64_t p = 0; p < count; ++p)
     {
+      if (errors.Failed())
+        continue;
       if (repairer.IsUniform(p))
       {
         manifold[p] = 1;
         continue;
       }
-      repairer.Load(p, star, localOf);
-      manifold[p] = !repairer.FindViolation(star, violation);
+      errors.Run([&] {
+        repairer.Load(p, star, localOf);
+        manifold[p] = !repairer.FindViolation(star, violation);
+      });
     }
   }
+  errors.Rethrow();
   return manifold;
 }
 } // namespace

@@ -30,12 +30,15 @@ QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads,
     perTet->MinDegrees.resize(count);
     perTet->MaxDegrees.resize(count);
   }
+  RegionErrors errors; // a label's first tet on a thread adds to its map
 #pragma omp parallel num_threads(threads)
   {
     auto& local = perThread[ThreadId()];
 #pragma omp for schedule(static)
     for (std::int64_t t = 0; t < count; ++t)
     {
+      if (errors.Failed())
+        continue;
       const Tet& tet = mesh.Tets[t];
       const auto& p = mesh.Points;
       const auto angles = DihedralAngles(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]);
@@ -47,7 +50,7 @@ QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads,
       one.Inverted = SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) > 0.0 ? 0 : 1;
       one.SmallAngle = one.MinDegrees < SmallAngleDegrees ? 1 : 0;
       one.LargeAngle = one.MaxDegrees > LargeAngleDegrees ? 1 : 0;
-      local[mesh.Labels[t]].Merge(one);
+      errors.Run([&] { local[mesh.Labels[t]].Merge(one); });
       if (perTet)
       {
         perTet->MinDegrees[t] = one.MinDegrees;
@@ -55,6 +58,7 @@ QualitySummary SummarizeQuality(const TetMesh& mesh, int numberOfThreads,
       }
     }
   }
+  errors.Rethrow();
   QualitySummary summary;
   for (const auto& local : perThread)
   {
