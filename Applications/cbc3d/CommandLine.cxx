@@ -12,81 +12,6 @@
 #include <map>
 #include <sstream>
 
-namespace
-{
-// More deformation iterations than any image needs: the deformation stops once five in a row
-// bring the surface no closer (13 on ball.vti, 16 on the brain).
-constexpr int MaximumIterations = 1000;
-
-bool ParseDouble(const std::string& text, double& value)
-{
-  char* end = nullptr;
-  value = std::strtod(text.c_str(), &end);
-  return !text.empty() && end && *end == '\0' && std::isfinite(value);
-}
-
-bool ParseInt(const std::string& text, int& value)
-{
-  char* end = nullptr;
-  const long parsed = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || !end || *end != '\0' || parsed < -2147483647L - 1 || parsed > 2147483647L)
-  {
-    return false;
-  }
-  value = static_cast<int>(parsed);
-  return true;
-}
-
-// A label: any 64-bit signed integer.
-bool ParseLabel(const std::string& text, long long& value)
-{
-  char* end = nullptr;
-  errno = 0;
-  value = std::strtoll(text.c_str(), &end, 10);
-  return !text.empty() && end && *end == '\0' && errno != ERANGE;
-}
-
-// Checks every -o and --surfaces extension and that no file is named twice.
-bool CheckOutputs(const CommandLineOptions& options, std::string& error)
-{
-  std::vector<std::string> paths = options.Outputs;
-  for (const std::string& output : options.Outputs)
-  {
-    const std::string extension = FileExtension(output);
-    if (!IsMeshExtension(extension))
-    {
-      error = "unknown output extension '" + extension + "' for '" + output +
-        "': use .vtu, .vtk, .msh, .inp, .mesh, .feb, .xdmf or .exo";
-      return false;
-    }
-  }
-  if (!options.SurfacesPath.empty())
-  {
-    const std::string extension = FileExtension(options.SurfacesPath);
-    if (!IsSurfaceExtension(extension))
-    {
-      error = "unknown surfaces extension '" + extension + "' for '" + options.SurfacesPath +
-        "': use .vtp, .vtk, .stl or .obj";
-      return false;
-    }
-    paths.push_back(options.SurfacesPath);
-  }
-  paths.push_back(options.ReportPath);
-  for (std::size_t i = 0; i < paths.size(); ++i)
-  {
-    for (std::size_t j = i + 1; j < paths.size(); ++j)
-    {
-      if (!paths[i].empty() && paths[i] == paths[j])
-      {
-        error = "the file '" + paths[i] + "' is given twice as an output";
-        return false;
-      }
-    }
-  }
-  return true;
-}
-} // namespace
-
 bool IsMeshExtension(const std::string& extension)
 {
   return extension == ".vtu" || extension == ".vtk" || cbc3d::IsExportExtension(extension);
@@ -180,6 +105,78 @@ std::string FileExtension(const std::string& path)
 
 namespace
 {
+// More deformation iterations than any image needs: the deformation stops once five in a row
+// bring the surface no closer (13 on ball.vti, 16 on the brain).
+constexpr int MaximumIterations = 1000;
+
+bool ParseDouble(const std::string& text, double& value)
+{
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  return !text.empty() && end && *end == '\0' && std::isfinite(value);
+}
+
+bool ParseInt(const std::string& text, int& value)
+{
+  char* end = nullptr;
+  const long parsed = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || !end || *end != '\0' || parsed < -2147483647L - 1 || parsed > 2147483647L)
+  {
+    return false;
+  }
+  value = static_cast<int>(parsed);
+  return true;
+}
+
+// A label: any 64-bit signed integer.
+bool ParseLabel(const std::string& text, long long& value)
+{
+  char* end = nullptr;
+  errno = 0;
+  value = std::strtoll(text.c_str(), &end, 10);
+  return !text.empty() && end && *end == '\0' && errno != ERANGE;
+}
+
+// Checks every -o and --surfaces extension and that no file is named twice.
+bool CheckOutputs(const CommandLineOptions& options, std::string& error)
+{
+  std::vector<std::string> paths = options.Outputs;
+  for (const std::string& output : options.Outputs)
+  {
+    const std::string extension = FileExtension(output);
+    if (!IsMeshExtension(extension))
+    {
+      error = "unknown output extension '" + extension + "' for '" + output +
+        "': use .vtu, .vtk, .msh, .inp, .mesh, .feb, .xdmf or .exo";
+      return false;
+    }
+  }
+  if (!options.SurfacesPath.empty())
+  {
+    const std::string extension = FileExtension(options.SurfacesPath);
+    if (!IsSurfaceExtension(extension))
+    {
+      error = "unknown surfaces extension '" + extension + "' for '" + options.SurfacesPath +
+        "': use .vtp, .vtk, .stl or .obj";
+      return false;
+    }
+    paths.push_back(options.SurfacesPath);
+  }
+  paths.push_back(options.ReportPath);
+  for (std::size_t i = 0; i < paths.size(); ++i)
+  {
+    for (std::size_t j = i + 1; j < paths.size(); ++j)
+    {
+      if (!paths[i].empty() && paths[i] == paths[j])
+      {
+        error = "the file '" + paths[i] + "' is given twice as an output";
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
 // The options as they are read: the first --background replaces the default 0.
 struct Parsing
 {
