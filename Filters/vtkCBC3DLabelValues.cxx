@@ -121,6 +121,7 @@ struct Survey
     const int threads = cbc3d::ThreadCount(this->Threads);
     std::vector<DistinctLabels> seen(static_cast<std::size_t>(threads));
     std::int64_t firstRefused = count;
+    cbc3d::RegionErrors errors; // the lists of labels grow
 #pragma omp parallel num_threads(threads) reduction(min : firstRefused)
     {
       DistinctLabels& mine = seen[static_cast<std::size_t>(omp_get_thread_num())];
@@ -129,9 +130,11 @@ struct Survey
       {
         const std::int64_t begin = r * this->RowLength;
         const std::int64_t end = std::min(count, begin + this->RowLength);
-        firstRefused = std::min(firstRefused, this->SurveyRow(range, begin, end, mine, r));
+        if (!errors.Failed())
+          errors.Run([&] { firstRefused = std::min(firstRefused, this->SurveyRow(range, begin, end, mine, r)); });
       }
     }
+    errors.Rethrow();
     if (firstRefused < count)
     {
       this->Error = Refusal(range[firstRefused]);

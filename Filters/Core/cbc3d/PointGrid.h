@@ -103,6 +103,11 @@ private:
   void GroupCandidates(const std::vector<Eigen::Vector3d>& queries, const QueryGroups& groups,
     std::int64_t g, double radius, GroupSearch& search) const;
 
+  // NearestOfAll's answers for the queries of group g, from the group's shared list.
+  template <typename Accept>
+  void NearestOfGroup(const std::vector<Eigen::Vector3d>& queries, const QueryGroups& groups, std::int64_t g,
+    double radius, const Accept& accept, GroupSearch& search, std::vector<int>& nearest) const;
+
   // The cell of x along each axis, not clamped: x lies inside it even when outside the grid.
   Eigen::Matrix<std::int64_t, 3, 1> QueryCellOf(const Eigen::Vector3d& x) const;
 
@@ -168,11 +173,15 @@ std::vector<int> PointGrid::NearestOfAll(
   // matcher's targets: 8 a cell on the brain, searched one by one, 0.77 against 1.13 G
   // instructions shared; 36 a cell on the brain at twice the resolution, 3.23 against 2.30 G).
   QueryGroups groups;
+  // A group's lists grow, and `accept` may throw: errors leave the regions as one exception.
+  RegionErrors errors;
   if (!this->GroupByCell(queries, std::isinf(radius) ? 4 : 16, groups, threads))
   {
 #pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(threads))
     for (std::int64_t q = 0; q < count; ++q)
-      nearest[q] = this->Nearest(queries[q], radius, [&](int index) { return accept(q, index); });
+      if (!errors.Failed())
+        errors.Run([&] { nearest[q] = this->Nearest(queries[q], radius, [&](int index) { return accept(q, index); }); });
+    errors.Rethrow();
     return nearest;
   }
   const std::int64_t groupCount = static_cast<std::int64_t>(groups.Start.size()) - 1;
@@ -181,30 +190,37 @@ std::vector<int> PointGrid::NearestOfAll(
     GroupSearch search;
 #pragma omp for schedule(dynamic, 16)
     for (std::int64_t g = 0; g < groupCount; ++g)
-    {
-      this->GroupCandidates(queries, groups, g, radius, search);
-      for (int i = groups.Start[g]; i < groups.Start[g + 1]; ++i)
-      {
-        // As ScanRow compares: the nearest accepted, the lower index on a tie.
-        const std::int64_t q = groups.Order[i];
-        const double fromCentre = (queries[q] - search.Centre).norm() + search.Slack;
-        Best best{ -1, radius * radius };
-        for (const Candidate& candidate : search.Candidates)
-        {
-          const double atLeast = candidate.FromCentre - fromCentre;
-          if (atLeast > 0.0 && atLeast * atLeast > best.Distance)
-            break; // this one and all after it are farther than the best
-          const double distance = (candidate.Point - queries[q]).squaredNorm();
-          const int index = candidate.Index;
-          if ((distance < best.Distance || (distance == best.Distance && (best.Index < 0 || index < best.Index))) &&
-            accept(q, index))
-            best = Best{ index, distance };
-        }
-        nearest[q] = best.Index;
-      }
-    }
+      if (!errors.Failed())
+        errors.Run([&] { this->NearestOfGroup(queries, groups, g, radius, accept, search, nearest); });
   }
+  errors.Rethrow();
   return nearest;
+}
+
+template <typename Accept>
+void PointGrid::NearestOfGroup(const std::vector<Eigen::Vector3d>& queries, const QueryGroups& groups,
+  std::int64_t g, double radius, const Accept& accept, GroupSearch& search, std::vector<int>& nearest) const
+{
+  this->GroupCandidates(queries, groups, g, radius, search);
+  for (int i = groups.Start[g]; i < groups.Start[g + 1]; ++i)
+  {
+    // As ScanRow compares: the nearest accepted, the lower index on a tie.
+    const std::int64_t q = groups.Order[i];
+    const double fromCentre = (queries[q] - search.Centre).norm() + search.Slack;
+    Best best{ -1, radius * radius };
+    for (const Candidate& candidate : search.Candidates)
+    {
+      const double atLeast = candidate.FromCentre - fromCentre;
+      if (atLeast > 0.0 && atLeast * atLeast > best.Distance)
+        break; // this one and all after it are farther than the best
+      const double distance = (candidate.Point - queries[q]).squaredNorm();
+      const int index = candidate.Index;
+      if ((distance < best.Distance || (distance == best.Distance && (best.Index < 0 || index < best.Index))) &&
+        accept(q, index))
+        best = Best{ index, distance };
+    }
+    nearest[q] = best.Index;
+  }
 }
 
 template <typename Accept>

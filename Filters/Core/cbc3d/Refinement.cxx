@@ -125,17 +125,7 @@ bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threa
   mesh.Labels.assign(count, NoLabel);
   std::atomic<bool> stop(false);
   const auto& points = hierarchy.Points();
-#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(threads))
-  for (std::int64_t t = 0; t < count; ++t)
-  {
-    if (stop.load(std::memory_order_relaxed))
-    {
-      continue;
-    }
-    if (ThreadId() == 0 && t % 4096 == 0 && !keepGoing())
-    {
-      stop.store(true);
-    }
+  auto sample = [&](std::int64_t t) {
     if (takenFrom[t] >= 0)
     {
       mesh.Counts[t] = std::move(lastCounts[takenFrom[t]]);
@@ -151,7 +141,22 @@ bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threa
     std::int32_t label = NoLabel;
     mesh.Counts[t].Majority(image, label);
     mesh.Labels[t] = label;
+  };
+  RegionErrors errors; // a tet's label counts grow
+#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(threads))
+  for (std::int64_t t = 0; t < count; ++t)
+  {
+    if (stop.load(std::memory_order_relaxed) || errors.Failed())
+    {
+      continue;
+    }
+    if (ThreadId() == 0 && t % 4096 == 0 && !keepGoing())
+    {
+      stop.store(true);
+    }
+    errors.Run([&] { sample(t); });
   }
+  errors.Rethrow();
   if (stop.load())
   {
     mesh.VoxelOwner.clear(); // the owners are a mix of two passes: a next pass starts afresh
@@ -193,6 +198,7 @@ void CountTissueVoxelsInTets(const LabelImage& image, const LabelledMesh& mesh, 
 {
   std::map<std::int32_t, std::pair<std::int64_t, std::int64_t>> counts;
   const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
+  RegionErrors errors; // the maps grow
 #pragma omp parallel num_threads(ThreadCount(threads))
   {
     std::map<std::int32_t, std::pair<std::int64_t, std::int64_t>> local;
@@ -201,20 +207,25 @@ void CountTissueVoxelsInTets(const LabelImage& image, const LabelledMesh& mesh, 
     {
       // Only voxel centres count: each belongs to one tet. Sub-sampled tets hold none.
       const std::int32_t label = mesh.Labels[t];
-      if (mesh.HoldsVoxelCentres[t] && label != NoLabel && image.IsTissue(label))
+      if (mesh.HoldsVoxelCentres[t] && label != NoLabel && image.IsTissue(label) && !errors.Failed())
       {
-        auto& entry = local[label];
-        entry.first += mesh.Counts[t].Total();
-        entry.second += mesh.Counts[t].Of(label);
+        errors.Run([&] {
+          auto& entry = local[label];
+          entry.first += mesh.Counts[t].Total();
+          entry.second += mesh.Counts[t].Of(label);
+        });
       }
     }
 #pragma omp critical
-    for (const auto& [label, sums] : local)
-    {
-      counts[label].first += sums.first;
-      counts[label].second += sums.second;
-    }
+    errors.Run([&] {
+      for (const auto& [label, sums] : local)
+      {
+        counts[label].first += sums.first;
+        counts[label].second += sums.second;
+      }
+    });
   }
+  errors.Rethrow();
   for (const auto& [label, sums] : counts)
   {
     inTets[label] = double(sums.first);

@@ -66,6 +66,45 @@ void MarkOtherLabels(const LabelImage& image, int j, int k, int a, int b, std::i
     }
   });
 }
+
+// The boundary voxels of slice k as (label, voxel), in voxel order.
+void AddSliceBoundaryVoxels(const LabelImage& image, int k, std::vector<char>& marks,
+  std::vector<std::pair<std::int32_t, std::int64_t>>& found)
+{
+  const auto& d = image.Dimensions;
+  const std::array<int, 3> first = image.StoredLower, last = image.StoredUpper();
+  for (int j = first[1]; j <= last[1]; ++j)
+  {
+    // Run by run: the ends of a tissue run differ from their neighbours along x (or lie on
+    // the image's border), and the rows around are read run by run too. Those rows are
+    // stored for a tissue run unless it lies on the image's border, where all its voxels are
+    // boundary voxels.
+    const std::int64_t row = image.VoxelIndex(first[0], j, k) - first[0];
+    const bool borderRow = j == 0 || k == 0 || j == d[1] - 1 || k == d[2] - 1;
+    image.ForEachRun(j, k, first[0], last[0], [&](std::int32_t label, int length, int a) {
+      const int b = a + length - 1;
+      if (image.IsTissue(label))
+      {
+        marks.assign(static_cast<std::size_t>(length), borderRow ? 1 : 0);
+        marks.front() = marks.back() = 1;
+        if (!borderRow)
+        {
+          MarkOtherLabels(image, j - 1, k, a, b, label, marks);
+          MarkOtherLabels(image, j + 1, k, a, b, label, marks);
+          MarkOtherLabels(image, j, k - 1, a, b, label, marks);
+          MarkOtherLabels(image, j, k + 1, a, b, label, marks);
+        }
+        for (int i = a; i <= b; ++i)
+        {
+          if (marks[i - a])
+          {
+            found.emplace_back(label, row + i);
+          }
+        }
+      }
+    });
+  }
+}
 } // namespace
 
 TissueVoxels TissueBoundaryVoxels(const LabelImage& image, int numberOfThreads)
@@ -75,46 +114,16 @@ TissueVoxels TissueBoundaryVoxels(const LabelImage& image, int numberOfThreads)
   const std::array<int, 3> first = image.StoredLower, last = image.StoredUpper();
   // One list of (label, voxel) per slice, merged in slice order for a thread-independent result.
   std::vector<std::vector<std::pair<std::int32_t, std::int64_t>>> perSlice(d[2]);
+  RegionErrors errors; // the slices' lists grow
 #pragma omp parallel num_threads(ThreadCount(numberOfThreads))
   {
     std::vector<char> marks;
 #pragma omp for schedule(dynamic, 1)
     for (int k = first[2]; k <= last[2]; ++k)
-    {
-      auto& found = perSlice[k];
-      for (int j = first[1]; j <= last[1]; ++j)
-      {
-        // Run by run: the ends of a tissue run differ from their neighbours along x (or lie on
-        // the image's border), and the rows around are read run by run too. Those rows are
-        // stored for a tissue run unless it lies on the image's border, where all its voxels are
-        // boundary voxels.
-        const std::int64_t row = image.VoxelIndex(first[0], j, k) - first[0];
-        const bool borderRow = j == 0 || k == 0 || j == d[1] - 1 || k == d[2] - 1;
-        image.ForEachRun(j, k, first[0], last[0], [&](std::int32_t label, int length, int a) {
-          const int b = a + length - 1;
-          if (image.IsTissue(label))
-          {
-            marks.assign(static_cast<std::size_t>(length), borderRow ? 1 : 0);
-            marks.front() = marks.back() = 1;
-            if (!borderRow)
-            {
-              MarkOtherLabels(image, j - 1, k, a, b, label, marks);
-              MarkOtherLabels(image, j + 1, k, a, b, label, marks);
-              MarkOtherLabels(image, j, k - 1, a, b, label, marks);
-              MarkOtherLabels(image, j, k + 1, a, b, label, marks);
-            }
-            for (int i = a; i <= b; ++i)
-            {
-              if (marks[i - a])
-              {
-                found.emplace_back(label, row + i);
-              }
-            }
-          }
-        });
-      }
-    }
+      if (!errors.Failed())
+        errors.Run([&] { AddSliceBoundaryVoxels(image, k, marks, perSlice[k]); });
   }
+  errors.Rethrow();
   TissueVoxels result;
   for (const auto& slice : perSlice)
   {

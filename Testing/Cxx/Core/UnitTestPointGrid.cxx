@@ -242,3 +242,23 @@ TEST(PointGrid, NearestOfAllWithARadiusAndAFilter)
     }
   }
 }
+
+TEST(PointGrid, NearestOfAllCarriesAnErrorOutOfItsThreads)
+{
+  // An exception in a thread of a parallel region would end the process (std::terminate); one
+  // thrown while searching, shared lists or one by one, reaches the caller instead.
+  const std::vector<Eigen::Vector3d> points = SpherePoints(300, 8.0, 13);
+  const std::vector<Eigen::Vector3d> dense = ShellLattice(9.5, 0.5, 7.0, 9.0);
+  const std::vector<Eigen::Vector3d> sparse(dense.begin(), dense.begin() + 20);
+  const cbc3d::PointGrid grid(points, 1.0);
+  auto failing = [](std::int64_t q, int) -> bool {
+    if (q % 5 == 3)
+      throw std::bad_alloc();
+    return true;
+  };
+  for (const auto* queries : { &dense, &sparse })
+  {
+    EXPECT_THROW(grid.NearestOfAll(*queries, 2.0, failing, 4), std::bad_alloc);
+    EXPECT_THROW(grid.NearestOfAll(*queries, 2.0, failing, 1), std::bad_alloc);
+  }
+}
