@@ -130,8 +130,7 @@ struct Survey
       {
         const std::int64_t begin = r * this->RowLength;
         const std::int64_t end = std::min(count, begin + this->RowLength);
-        if (!errors.Failed())
-          errors.Run([&] { firstRefused = std::min(firstRefused, this->SurveyRow(range, begin, end, mine, r)); });
+        errors.Run([&] { firstRefused = std::min(firstRefused, this->SurveyRow(range, begin, end, mine, r)); });
       }
     }
     errors.Rethrow();

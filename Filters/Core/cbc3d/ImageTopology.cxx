@@ -189,8 +189,7 @@ EulerSums VoxelSurfaceEuler(const LabelImage& image, const std::array<int, 3>& l
   {
     const int first = lower[2] + int(std::int64_t(slices) * slab / slabs);
     const int last = lower[2] + int(std::int64_t(slices) * (slab + 1) / slabs) - 1;
-    if (!errors.Failed())
-      errors.Run([&] { perSlab[slab] = SlabEuler(image, lower, upper, first, last, inside); });
+    errors.Run([&] { perSlab[slab] = SlabEuler(image, lower, upper, first, last, inside); });
   }
   errors.Rethrow();
   EulerSums sums;

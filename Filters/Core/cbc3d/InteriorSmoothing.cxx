@@ -125,8 +125,7 @@ std::size_t InteriorSmoothing::Smooth(
         const std::int64_t count = static_cast<std::int64_t>(level.size());
 #pragma omp for schedule(static)
         for (std::int64_t i = 0; i < count; ++i)
-          if (!errors.Failed())
-            errors.Run([&] { moved += this->TryMove(level[i], x, badness, trial); });
+          errors.Run([&] { moved += this->TryMove(level[i], x, badness, trial); });
       }
     }
     errors.Rethrow();

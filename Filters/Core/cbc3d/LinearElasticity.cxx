@@ -97,8 +97,7 @@ void ForEachNeighbourList(const TetMesh& mesh, const PointTets& around, int thre
     errors.Run([&] { seen.assign(n, -1); }); // every thread meets the loop below, failed or not
 #pragma omp for schedule(dynamic, 1024)
     for (std::int64_t p = 0; p < n; ++p)
-      if (!errors.Failed())
-        errors.Run([&] {
+      errors.Run([&] {
           ListNeighbours(mesh, around, p, seen, list);
           visit(p, list);
         });

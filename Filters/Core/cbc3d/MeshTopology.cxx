@@ -63,8 +63,7 @@ void CountPerPoint(std::size_t pointCount, int threads, std::vector<RegionTopolo
     errors.Run([&] { mine.Regions.resize(regions.size()); });
 #pragma omp for schedule(dynamic, 4096)
     for (std::int64_t p = 0; p < count; ++p)
-      if (!errors.Failed())
-        errors.Run([&] { countAt(static_cast<std::size_t>(p), mine); });
+      errors.Run([&] { countAt(static_cast<std::size_t>(p), mine); });
   }
   errors.Rethrow();
   for (const ThreadCounts& counts : local)

@@ -42,14 +42,17 @@ constexpr int MaximumThreads = 1024;
 
 /// Carries an exception (std::bad_alloc, typically) out of an OpenMP parallel region, which it
 /// may not leave by itself (that calls std::terminate): each thread runs its work through Run,
-/// which keeps the first exception; the others can poll Failed to stop early; after the region,
-/// Rethrow throws it on the calling thread.
+/// which keeps the first exception and, once one is kept, runs no more work (its results would be
+/// thrown away); after the region, Rethrow throws it on the calling thread. Work passed to Run
+/// must not hold a worksharing construct or a barrier, which every thread has to meet.
 class RegionErrors
 {
 public:
   template <typename Work>
   void Run(Work&& work) noexcept
   {
+    if (this->Failed())
+      return;
     try
     {
       work();

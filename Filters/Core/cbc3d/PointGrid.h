@@ -179,8 +179,7 @@ std::vector<int> PointGrid::NearestOfAll(
   {
 #pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(threads))
     for (std::int64_t q = 0; q < count; ++q)
-      if (!errors.Failed())
-        errors.Run([&] { nearest[q] = this->Nearest(queries[q], radius, [&](int index) { return accept(q, index); }); });
+      errors.Run([&] { nearest[q] = this->Nearest(queries[q], radius, [&](int index) { return accept(q, index); }); });
     errors.Rethrow();
     return nearest;
   }
@@ -190,8 +189,7 @@ std::vector<int> PointGrid::NearestOfAll(
     GroupSearch search;
 #pragma omp for schedule(dynamic, 16)
     for (std::int64_t g = 0; g < groupCount; ++g)
-      if (!errors.Failed())
-        errors.Run([&] { this->NearestOfGroup(queries, groups, g, radius, accept, search, nearest); });
+      errors.Run([&] { this->NearestOfGroup(queries, groups, g, radius, accept, search, nearest); });
   }
   errors.Rethrow();
   return nearest;

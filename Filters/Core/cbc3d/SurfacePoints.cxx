@@ -120,8 +120,7 @@ TissueVoxels TissueBoundaryVoxels(const LabelImage& image, int numberOfThreads)
     std::vector<char> marks;
 #pragma omp for schedule(dynamic, 1)
     for (int k = first[2]; k <= last[2]; ++k)
-      if (!errors.Failed())
-        errors.Run([&] { AddSliceBoundaryVoxels(image, k, marks, perSlice[k]); });
+      errors.Run([&] { AddSliceBoundaryVoxels(image, k, marks, perSlice[k]); });
   }
   errors.Rethrow();
   TissueVoxels result;
