@@ -3,10 +3,10 @@
 #include "vtkCBC3DConvert.h"
 #include "vtkCBC3DLabelImageCache.h"
 
-#include "cbc3d/LabelCodes.h"
-#include "cbc3d/LabelImage.h"
-#include "cbc3d/Status.h"
-#include "cbc3d/TetMesh.h"
+#include "cbc3d/base/LabelCodes.h"
+#include "cbc3d/base/LabelImage.h"
+#include "cbc3d/base/Status.h"
+#include "cbc3d/base/TetMesh.h"
 
 #include <vtkDataObject.h>
 #include <vtkDataSetAttributes.h>

@@ -3,7 +3,7 @@
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DConvert.h"
 
-#include "cbc3d/BCCLattice.h"
+#include "cbc3d/lattice/BCCLattice.h"
 
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>

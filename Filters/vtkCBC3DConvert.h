@@ -8,11 +8,11 @@
 #ifndef vtkCBC3DConvert_h
 #define vtkCBC3DConvert_h
 
-#include "cbc3d/LabelCodes.h"
-#include "cbc3d/LabelImage.h"
-#include "cbc3d/Progress.h"
-#include "cbc3d/TaggedMesh.h"
-#include "cbc3d/TetMesh.h"
+#include "cbc3d/base/LabelCodes.h"
+#include "cbc3d/base/LabelImage.h"
+#include "cbc3d/base/Progress.h"
+#include "cbc3d/base/TaggedMesh.h"
+#include "cbc3d/base/TetMesh.h"
 
 #include <vtkType.h>
 

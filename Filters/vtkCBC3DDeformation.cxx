@@ -3,7 +3,7 @@
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DConvert.h"
 
-#include "cbc3d/Deformation.h"
+#include "cbc3d/deformation/Deformation.h"
 
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>

@@ -2,7 +2,7 @@
 
 #include "vtkCBC3DConvert.h"
 
-#include "cbc3d/LabelImage.h"
+#include "cbc3d/base/LabelImage.h"
 
 #include <vtkDataArray.h>
 #include <vtkImageData.h>

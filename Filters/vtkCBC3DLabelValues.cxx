@@ -1,6 +1,6 @@
 #include "vtkCBC3DLabelValues.h"
 
-#include "cbc3d/Parallel.h"
+#include "cbc3d/base/Parallel.h"
 
 #include <omp.h>
 

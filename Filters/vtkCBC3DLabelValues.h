@@ -9,7 +9,7 @@
 #ifndef vtkCBC3DLabelValues_h
 #define vtkCBC3DLabelValues_h
 
-#include "cbc3d/LabelCodes.h"
+#include "cbc3d/base/LabelCodes.h"
 
 #include <vtkSmartPointer.h>
 #include <vtkType.h>

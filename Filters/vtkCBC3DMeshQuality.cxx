@@ -4,12 +4,12 @@
 #include "vtkCBC3DConvert.h"
 #include "vtkCBC3DLabelValues.h"
 
-#include "cbc3d/MeshTopology.h"
-#include "cbc3d/Parallel.h"
-#include "cbc3d/PointGrid.h"
-#include "cbc3d/Quality.h"
-#include "cbc3d/SurfaceDistance.h"
-#include "cbc3d/SurfacePoints.h"
+#include "cbc3d/base/Parallel.h"
+#include "cbc3d/base/PointGrid.h"
+#include "cbc3d/quality/MeshTopology.h"
+#include "cbc3d/quality/Quality.h"
+#include "cbc3d/quality/SurfaceDistance.h"
+#include "cbc3d/sampling/SurfacePoints.h"
 
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>

@@ -32,7 +32,7 @@
  *   `TissueImageToMeshDistance` (the two one-sided distances), `TissueHausdorffDistance95` (the
  *   larger of the two one-sided 95th percentiles) and `TissueMeanSurfaceDistance` (mm).
  *
- * Topology (field data, vtkIdTypeArray, cbc3d/MeshTopology.h): a tissue's tets are those with
+ * Topology (field data, vtkIdTypeArray, cbc3d/quality/MeshTopology.h): a tissue's tets are those with
  * its label, its surface the mesh faces with exactly one tet of it (interfaces are in both
  * tissues' surfaces); the whole body is every tet, its surface the mesh boundary.
  * - over the whole body: `FaceComponents` and `VertexComponents` (its tets connected through

@@ -2,7 +2,7 @@
 
 #include "vtkCBC3DConvert.h"
 
-#include "cbc3d/MeshExport.h"
+#include "cbc3d/export/MeshExport.h"
 
 #include <vtkInformation.h>
 #include <vtkObjectFactory.h>

@@ -4,7 +4,7 @@
 #include "vtkCBC3DConvert.h"
 #include "vtkCBC3DLabelValues.h"
 
-#include "cbc3d/Refinement.h"
+#include "cbc3d/refinement/Refinement.h"
 
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>

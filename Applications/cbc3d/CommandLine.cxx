@@ -1,7 +1,7 @@
 #include "CommandLine.h"
 
-#include "cbc3d/MeshExport.h"
-#include "cbc3d/Parallel.h"
+#include "cbc3d/base/Parallel.h"
+#include "cbc3d/export/MeshExport.h"
 
 #include <algorithm>
 #include <cctype>

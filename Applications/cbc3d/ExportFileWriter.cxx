@@ -6,7 +6,7 @@
 #include "MeshFileWriter.h"
 #include "vtkCBC3DConvert.h"
 
-#include "cbc3d/AtomicFile.h"
+#include "cbc3d/export/AtomicFile.h"
 
 #include <vtkCellData.h>
 #include <vtkNew.h>

@@ -1,7 +1,7 @@
 #ifndef cbc3d_ExportFileWriter_h
 #define cbc3d_ExportFileWriter_h
 
-#include "cbc3d/TaggedMesh.h"
+#include "cbc3d/base/TaggedMesh.h"
 
 #include <string>
 

@@ -4,7 +4,7 @@
 #include "ErrorCapture.h"
 #include "VtuWriter.h"
 
-#include "cbc3d/AtomicFile.h"
+#include "cbc3d/export/AtomicFile.h"
 
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>

@@ -1,6 +1,6 @@
 #include "StopSignals.h"
 
-#include "cbc3d/PendingFiles.h"
+#include "cbc3d/export/PendingFiles.h"
 
 #include <vtkLogger.h>
 #include <vtkNew.h>

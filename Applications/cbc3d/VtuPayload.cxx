@@ -1,6 +1,6 @@
 #include "VtuPayload.h"
 
-#include "cbc3d/Parallel.h"
+#include "cbc3d/base/Parallel.h"
 
 #include <vtkBase64Utilities.h>
 

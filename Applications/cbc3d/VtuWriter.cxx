@@ -2,7 +2,7 @@
 
 #include "VtuPayload.h"
 
-#include "cbc3d/Parallel.h"
+#include "cbc3d/base/Parallel.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

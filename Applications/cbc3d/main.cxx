@@ -16,8 +16,8 @@
 #include "vtkCBC3DMeshQuality.h"
 #include "vtkCBC3DRefinement.h"
 
-#include "cbc3d/MeshExport.h"
-#include "cbc3d/Parallel.h"
+#include "cbc3d/base/Parallel.h"
+#include "cbc3d/export/MeshExport.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>

@@ -5,14 +5,14 @@
 #include "FuzzBytes.h"
 #include "MeshInvariants.h"
 
-#include "cbc3d/BCCLattice.h"
-#include "cbc3d/Deformation.h"
-#include "cbc3d/ImageTopology.h"
-#include "cbc3d/MeshTopology.h"
-#include "cbc3d/Quality.h"
-#include "cbc3d/Refinement.h"
-#include "cbc3d/SurfacePoints.h"
-#include "cbc3d/TaggedMesh.h"
+#include "cbc3d/base/TaggedMesh.h"
+#include "cbc3d/deformation/Deformation.h"
+#include "cbc3d/lattice/BCCLattice.h"
+#include "cbc3d/quality/ImageTopology.h"
+#include "cbc3d/quality/MeshTopology.h"
+#include "cbc3d/quality/Quality.h"
+#include "cbc3d/refinement/Refinement.h"
+#include "cbc3d/sampling/SurfacePoints.h"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,8 +1,8 @@
 #ifndef cbc3d_MeshInvariants_h
 #define cbc3d_MeshInvariants_h
 
-#include "cbc3d/LabelImage.h"
-#include "cbc3d/TetMesh.h"
+#include "cbc3d/base/LabelImage.h"
+#include "cbc3d/base/TetMesh.h"
 
 #include <string>
 

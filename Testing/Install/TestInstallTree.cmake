@@ -7,7 +7,7 @@
 # 1. `cmake --install BUILD_DIR --prefix WORK_DIR/prefix`;
 # 2. the prefix holds the library, the public headers, the package files, the command and the
 #    plugin, and nothing of the private VTK-free core (no vtkCBC3DConvert.h, no cbc3d/ headers,
-#    no libcbc3d_core.a; the exported target names neither cbc3d_core, Eigen nor OpenMP);
+#    no static core library (libcbc3d_*.a); the exported target names no core stage, Eigen nor OpenMP);
 # 3. the installed command and plugin find the installed libvtkCBC3DFilters.so through their
 #    RPATHs (ldd), and the installed command meshes Data/ball.vti;
 # 4. the outside project Testing/Install/Consumer is configured with only
@@ -76,7 +76,7 @@ foreach(file IN LISTS expected)
 endforeach()
 file(GLOB_RECURSE installed RELATIVE "${prefix}" "${prefix}/*")
 foreach(file IN LISTS installed)
-  if(file MATCHES "vtkCBC3DConvert|cbc3d_core|/cbc3d/cbc3d/|include/cbc3d/[A-Z][A-Za-z]*\\.h$"
+  if(file MATCHES "vtkCBC3DConvert|libcbc3d_[a-z]+\\.a|/cbc3d/cbc3d/|include/cbc3d/([a-z]+/)?[A-Z][A-Za-z]*\\.h$"
       AND NOT file MATCHES "include/cbc3d/vtk")
     message(FATAL_ERROR "private file installed: ${file}")
   endif()
@@ -93,7 +93,7 @@ endforeach()
 file(GLOB exports "${prefix}/lib/cmake/cbc3d/CBC3D-targets*.cmake")
 foreach(export IN LISTS exports)
   file(READ "${export}" content)
-  if(content MATCHES "cbc3d_core|Eigen|OpenMP")
+  if(content MATCHES "cbc3d_(core|base|sampling|lattice|soundlabels|refinement|quality|export|deformation)[^a-z]|Eigen|OpenMP")
     message(FATAL_ERROR "${export} names a private dependency (${CMAKE_MATCH_0})")
   endif()
 endforeach()

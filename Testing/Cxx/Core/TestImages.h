@@ -1,8 +1,8 @@
 #ifndef cbc3d_TestImages_h
 #define cbc3d_TestImages_h
 
-#include "cbc3d/BCCLattice.h"
-#include "cbc3d/LabelImage.h"
+#include "cbc3d/base/LabelImage.h"
+#include "cbc3d/lattice/BCCLattice.h"
 
 #include <gtest/gtest.h>
 

@@ -2,8 +2,8 @@
 #ifndef cbc3d_TestMeshes_h
 #define cbc3d_TestMeshes_h
 
-#include "cbc3d/TetGeometry.h"
-#include "cbc3d/TetMesh.h"
+#include "cbc3d/base/TetGeometry.h"
+#include "cbc3d/base/TetMesh.h"
 
 #include <array>
 #include <utility>

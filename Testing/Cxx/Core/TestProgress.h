@@ -1,8 +1,8 @@
 #ifndef cbc3d_TestProgress_h
 #define cbc3d_TestProgress_h
 
-#include "cbc3d/Progress.h"
-#include "cbc3d/Status.h"
+#include "cbc3d/base/Progress.h"
+#include "cbc3d/base/Status.h"
 
 #include <gtest/gtest.h>
 

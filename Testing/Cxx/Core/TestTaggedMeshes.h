@@ -4,7 +4,7 @@
 
 #include "TestMeshes.h"
 
-#include "cbc3d/TaggedMesh.h"
+#include "cbc3d/base/TaggedMesh.h"
 
 #include <gtest/gtest.h>
 

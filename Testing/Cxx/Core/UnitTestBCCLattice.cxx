@@ -1,7 +1,7 @@
-#include "cbc3d/BCCLattice.h"
-#include "cbc3d/MeshFaces.h"
-#include "cbc3d/TetGeometry.h"
-#include "cbc3d/TetTopology.h"
+#include "cbc3d/base/MeshFaces.h"
+#include "cbc3d/base/TetGeometry.h"
+#include "cbc3d/base/TetTopology.h"
+#include "cbc3d/lattice/BCCLattice.h"
 
 #include "TestImages.h"
 

@@ -1,7 +1,7 @@
 // The writers that need netCDF and HDF5 are loaded from libcbc3dBinaryFormats.so when first
 // used (BinaryFormats.h): where the library is looked for, and that it is found and loaded once.
-#include "cbc3d/BinaryFormats.h"
-#include "cbc3d/ExodusWriter.h"
+#include "cbc3d/export/BinaryFormats.h"
+#include "cbc3d/export/ExodusWriter.h"
 
 #include <gtest/gtest.h>
 

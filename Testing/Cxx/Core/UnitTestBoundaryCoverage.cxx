@@ -1,11 +1,11 @@
 // The boundary-distance criterion of refinement: on a ball meshed with a coarse lattice, every
 // boundary voxel ends near a vertex of the deformed surface when it is on, and not when it is off.
-#include "cbc3d/BCCLattice.h"
-#include "cbc3d/BoundaryCoverage.h"
-#include "cbc3d/Deformation.h"
-#include "cbc3d/Refinement.h"
-#include "cbc3d/SurfacePoints.h"
-#include "cbc3d/TissueComponents.h"
+#include "cbc3d/deformation/Deformation.h"
+#include "cbc3d/lattice/BCCLattice.h"
+#include "cbc3d/refinement/BoundaryCoverage.h"
+#include "cbc3d/refinement/Refinement.h"
+#include "cbc3d/sampling/SurfacePoints.h"
+#include "cbc3d/sampling/TissueComponents.h"
 
 #include "TestImages.h"
 

@@ -1,5 +1,5 @@
 // Registration targets: boundary voxels, their label-sets, and where they sit.
-#include "cbc3d/BoundaryTargets.h"
+#include "cbc3d/deformation/BoundaryTargets.h"
 
 #include "TestImages.h"
 

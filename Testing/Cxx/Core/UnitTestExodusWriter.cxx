@@ -5,8 +5,8 @@
 // triangle's (outward) orientation.
 #include "TestMeshes.h"
 
-#include "cbc3d/ExodusWriter.h"
-#include "cbc3d/MeshExport.h"
+#include "cbc3d/export/ExodusWriter.h"
+#include "cbc3d/export/MeshExport.h"
 
 #include <gtest/gtest.h>
 #include <netcdf.h>

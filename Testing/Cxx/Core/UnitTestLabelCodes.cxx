@@ -1,4 +1,4 @@
-#include "cbc3d/LabelCodes.h"
+#include "cbc3d/base/LabelCodes.h"
 
 #include <gtest/gtest.h>
 

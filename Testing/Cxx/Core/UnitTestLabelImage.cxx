@@ -1,4 +1,4 @@
-#include "cbc3d/LabelImage.h"
+#include "cbc3d/base/LabelImage.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

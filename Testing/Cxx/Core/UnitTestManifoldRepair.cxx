@@ -2,10 +2,10 @@
 // its voxel's label, so the pattern's hinges (cubes meeting along an edge or at a corner) are
 // the mesh's before the repair. After it, the topology measure (MeshTopology, written apart
 // from the repair) must find every tissue and the whole body manifold.
-#include "cbc3d/ManifoldRepair.h"
-#include "cbc3d/MeshFaces.h"
-#include "cbc3d/MeshTopology.h"
-#include "cbc3d/VertexStar.h"
+#include "cbc3d/base/MeshFaces.h"
+#include "cbc3d/quality/MeshTopology.h"
+#include "cbc3d/soundlabels/ManifoldRepair.h"
+#include "cbc3d/soundlabels/VertexStar.h"
 
 #include "TestMeshes.h"
 

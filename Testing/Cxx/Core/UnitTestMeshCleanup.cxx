@@ -1,8 +1,8 @@
 // Surface ears and interior smoothing: the two mesh clean-ups that help deformation.
-#include "cbc3d/InteriorSmoothing.h"
-#include "cbc3d/MeshFaces.h"
-#include "cbc3d/SurfaceEars.h"
-#include "cbc3d/TetGeometry.h"
+#include "cbc3d/base/MeshFaces.h"
+#include "cbc3d/base/TetGeometry.h"
+#include "cbc3d/deformation/InteriorSmoothing.h"
+#include "cbc3d/refinement/SurfaceEars.h"
 
 #include "TestMeshes.h"
 

@@ -4,7 +4,7 @@
 #include "TestMeshes.h"
 #include "TestTaggedMeshes.h"
 
-#include "cbc3d/MeshExport.h"
+#include "cbc3d/export/MeshExport.h"
 
 #include <gtest/gtest.h>
 

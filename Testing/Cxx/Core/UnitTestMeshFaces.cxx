@@ -2,7 +2,7 @@
 // any number of threads and any vertex numbering inside the tets.
 #include "TestMeshes.h"
 
-#include "cbc3d/MeshFaces.h"
+#include "cbc3d/base/MeshFaces.h"
 
 #include <gtest/gtest.h>
 

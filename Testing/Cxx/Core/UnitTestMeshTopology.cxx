@@ -1,5 +1,5 @@
 // Topology of meshes and of label images, on shapes whose answers are known by hand.
-#include "cbc3d/MeshTopology.h"
+#include "cbc3d/quality/MeshTopology.h"
 #include "TestMeshes.h"
 
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // PointGrid against brute force: the nearest point within a radius, ties, and far queries.
-#include "cbc3d/PointGrid.h"
+#include "cbc3d/base/PointGrid.h"
 
 #include <gtest/gtest.h>
 

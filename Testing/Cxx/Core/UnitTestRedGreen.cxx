@@ -1,11 +1,11 @@
 #include "TestMeshes.h"
 
-#include "cbc3d/EdgeMidpoints.h"
-#include "cbc3d/MeshFaces.h"
-#include "cbc3d/RedGreenMesh.h"
-#include "cbc3d/RedGreenTables.h"
-#include "cbc3d/TetGeometry.h"
-#include "cbc3d/TetTopology.h"
+#include "cbc3d/base/MeshFaces.h"
+#include "cbc3d/base/TetGeometry.h"
+#include "cbc3d/base/TetTopology.h"
+#include "cbc3d/lattice/EdgeMidpoints.h"
+#include "cbc3d/lattice/RedGreenMesh.h"
+#include "cbc3d/lattice/RedGreenTables.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

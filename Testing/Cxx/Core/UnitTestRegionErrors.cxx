@@ -1,6 +1,6 @@
 // RegionErrors: the first exception of a parallel region reaches the caller, and no work runs
 // after it.
-#include "cbc3d/Parallel.h"
+#include "cbc3d/base/Parallel.h"
 
 #include <gtest/gtest.h>
 

@@ -1,14 +1,14 @@
 // A label image that stores only the box of its voxels that are not the first background label
 // (and one voxel around it) must give every stage the same answers as the whole image: the
 // stages' voxel indices then count within the box, so they are compared by voxel coordinates.
-#include "cbc3d/BoundaryTargets.h"
-#include "cbc3d/Deformation.h"
-#include "cbc3d/ImageTopology.h"
-#include "cbc3d/LabelImage.h"
-#include "cbc3d/Refinement.h"
-#include "cbc3d/SurfacePoints.h"
-#include "cbc3d/TetVoxelSampler.h"
-#include "cbc3d/TissueComponents.h"
+#include "cbc3d/base/LabelImage.h"
+#include "cbc3d/deformation/BoundaryTargets.h"
+#include "cbc3d/deformation/Deformation.h"
+#include "cbc3d/quality/ImageTopology.h"
+#include "cbc3d/refinement/Refinement.h"
+#include "cbc3d/sampling/SurfacePoints.h"
+#include "cbc3d/sampling/TetVoxelSampler.h"
+#include "cbc3d/sampling/TissueComponents.h"
 
 #include <gtest/gtest.h>
 

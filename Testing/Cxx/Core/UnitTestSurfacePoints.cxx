@@ -1,5 +1,5 @@
-#include "cbc3d/SurfaceDistance.h"
-#include "cbc3d/SurfacePoints.h"
+#include "cbc3d/quality/SurfaceDistance.h"
+#include "cbc3d/sampling/SurfacePoints.h"
 
 #include <gtest/gtest.h>
 

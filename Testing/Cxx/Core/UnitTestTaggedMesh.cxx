@@ -2,8 +2,8 @@
 // whose surfaces are known: unit cubes of Kuhn tets, a cube face being two triangles.
 #include "TestMeshes.h"
 
-#include "cbc3d/TaggedMesh.h"
-#include "cbc3d/TetGeometry.h"
+#include "cbc3d/base/TaggedMesh.h"
+#include "cbc3d/base/TetGeometry.h"
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>

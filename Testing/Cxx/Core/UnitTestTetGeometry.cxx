@@ -1,4 +1,4 @@
-#include "cbc3d/TetGeometry.h"
+#include "cbc3d/base/TetGeometry.h"
 
 #include <gtest/gtest.h>
 

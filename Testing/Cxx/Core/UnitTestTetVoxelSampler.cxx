@@ -1,4 +1,4 @@
-#include "cbc3d/TetVoxelSampler.h"
+#include "cbc3d/sampling/TetVoxelSampler.h"
 
 #include <Eigen/LU>
 

@@ -1,6 +1,6 @@
-#include "cbc3d/Quality.h"
-#include "cbc3d/TissueVolumes.h"
-#include "cbc3d/VolumeAims.h"
+#include "cbc3d/deformation/TissueVolumes.h"
+#include "cbc3d/deformation/VolumeAims.h"
+#include "cbc3d/quality/Quality.h"
 
 #include "TestMeshes.h"
 

@@ -7,8 +7,8 @@
 #include "TestMeshes.h"
 #include "TestTaggedMeshes.h"
 
-#include "cbc3d/MeshExport.h"
-#include "cbc3d/XdmfWriter.h"
+#include "cbc3d/export/MeshExport.h"
+#include "cbc3d/export/XdmfWriter.h"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>

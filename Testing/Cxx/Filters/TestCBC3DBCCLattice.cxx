@@ -5,7 +5,7 @@
 #include "vtkCBC3DBCCLattice.h"
 #include "vtkCBC3DMeshQuality.h"
 
-#include "cbc3d/TetTopology.h"
+#include "cbc3d/base/TetTopology.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCellData.h>

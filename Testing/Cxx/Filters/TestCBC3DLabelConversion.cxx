@@ -3,7 +3,7 @@
 // message for a value that is not a label, are the same for any number of threads.
 #include "vtkCBC3DConvert.h"
 
-#include "cbc3d/LabelImage.h"
+#include "cbc3d/base/LabelImage.h"
 
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>

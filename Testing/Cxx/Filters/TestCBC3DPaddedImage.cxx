@@ -5,7 +5,7 @@
 #include "vtkCBC3DConvert.h"
 #include "vtkCBC3DMesher.h"
 
-#include "cbc3d/LabelImage.h"
+#include "cbc3d/base/LabelImage.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

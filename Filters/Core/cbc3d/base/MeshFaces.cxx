@@ -1,0 +1,210 @@
+#include "cbc3d/base/MeshFaces.h"
+
+#include "cbc3d/base/Parallel.h"
+
+#include <algorithm>
+#include <functional>
+#include <memory>
+#include <stdexcept>
+
+namespace cbc3d
+{
+namespace
+{
+/// A face keyed by its two larger vertices (its smallest is its bucket), and one tet using it.
+struct FaceEntry
+{
+  std::uint64_t Key; // second * pointCount + third: one comparison orders both
+  std::int64_t Tet;
+  bool operator<(const FaceEntry& other) const
+  {
+    return this->Key < other.Key || (this->Key == other.Key && this->Tet < other.Tet);
+  }
+};
+
+std::array<PointId, 4> SortedCorners(const Tet& tet)
+{
+  std::array<PointId, 4> ids = tet;
+  // A sorting network of five compare-exchanges.
+  auto order = [&ids](int i, int j) {
+    if (ids[j] < ids[i])
+    {
+      std::swap(ids[i], ids[j]);
+    }
+  };
+  order(0, 1);
+  order(2, 3);
+  order(0, 2);
+  order(1, 3);
+  order(1, 2);
+  return ids;
+}
+
+/// Every face of every tet in buckets by its smallest vertex (bucket a holds entries
+/// start[a]..start[a+1]), each bucket sorted, so the order never depends on the threads.
+struct FaceBuckets
+{
+  std::vector<std::size_t> Start;
+  std::unique_ptr<FaceEntry[]> Entries; // not zeroed: the threads' fill touches it first
+
+  /// Calls `emit` with each distinct face of bucket `a`, in order.
+  template <typename Emit>
+  void ForEachFace(std::size_t a, std::uint64_t pointCount, Emit&& emit) const
+  {
+    const FaceEntry* entries = this->Entries.get();
+    for (std::size_t e = this->Start[a]; e < this->Start[a + 1];)
+    {
+      MeshFace face;
+      face.Points = { static_cast<PointId>(a), static_cast<PointId>(entries[e].Key / pointCount),
+        static_cast<PointId>(entries[e].Key % pointCount) };
+      const std::uint64_t key = entries[e].Key;
+      for (; e < this->Start[a + 1] && entries[e].Key == key; ++e)
+      {
+        if (face.TetCount < 2)
+        {
+          face.Tets[face.TetCount] = entries[e].Tet;
+        }
+        ++face.TetCount;
+      }
+      emit(face);
+    }
+  }
+};
+
+FaceBuckets BucketFaces(const std::vector<Tet>& tets, std::uint64_t pointCount, int threads)
+{
+  if (pointCount >= (std::uint64_t{ 1 } << 32))
+  {
+    throw std::length_error("mesh faces: more than 2^32 points"); // the keys would not fit
+  }
+  // Faces of a tet with sorted corners a < b < c < d: bcd, acd, abd, abc.
+  FaceBuckets buckets;
+  buckets.Start.assign(pointCount + 1, 0);
+  std::size_t* start = buckets.Start.data();
+  const std::int64_t tetCount = static_cast<std::int64_t>(tets.size());
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t t = 0; t < tetCount; ++t)
+  {
+    const auto ids = SortedCorners(tets[t]);
+#pragma omp atomic
+    start[ids[0] + 1] += 3;
+#pragma omp atomic
+    start[ids[1] + 1] += 1;
+  }
+  for (std::uint64_t p = 0; p < pointCount; ++p)
+  {
+    start[p + 1] += start[p];
+  }
+  buckets.Entries.reset(new FaceEntry[start[pointCount]]);
+  std::vector<std::size_t> fill(buckets.Start.begin(), buckets.Start.end() - 1);
+  std::size_t* next = fill.data();
+  FaceEntry* entries = buckets.Entries.get();
+  auto put = [&](PointId a, PointId b, PointId c, std::int64_t t) {
+    std::size_t slot;
+#pragma omp atomic capture
+    slot = next[a]++;
+    entries[slot] = FaceEntry{ static_cast<std::uint64_t>(b) * pointCount + static_cast<std::uint64_t>(c), t };
+  };
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::int64_t t = 0; t < tetCount; ++t)
+  {
+    const auto ids = SortedCorners(tets[t]);
+    put(ids[1], ids[2], ids[3], t);
+    put(ids[0], ids[2], ids[3], t);
+    put(ids[0], ids[1], ids[3], t);
+    put(ids[0], ids[1], ids[2], t);
+  }
+  // Threads fill a bucket in any order: sorting it makes the order the same for any count.
+  const std::int64_t bucketCount = static_cast<std::int64_t>(pointCount);
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(threads)
+  for (std::int64_t a = 0; a < bucketCount; ++a)
+  {
+    std::sort(entries + start[a], entries + start[a + 1]);
+  }
+  return buckets;
+}
+
+/// The faces that `keep` holds for, in bucket order: each bucket counts its kept faces, then
+/// writes them from its own offset, so the list is the same for any number of threads.
+template <typename Keep>
+std::vector<MeshFace> CollectFaces(const FaceBuckets& buckets, std::uint64_t pointCount, int threads, const Keep& keep)
+{
+  const std::int64_t bucketCount = static_cast<std::int64_t>(pointCount);
+  std::vector<std::size_t> firstFace(pointCount + 1, 0);
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(threads)
+  for (std::int64_t a = 0; a < bucketCount; ++a)
+  {
+    buckets.ForEachFace(a, pointCount, [&](const MeshFace& face) { firstFace[a + 1] += keep(face) ? 1 : 0; });
+  }
+  for (std::size_t a = 0; a < pointCount; ++a)
+  {
+    firstFace[a + 1] += firstFace[a];
+  }
+  std::vector<MeshFace> faces(firstFace[pointCount]);
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(threads)
+  for (std::int64_t a = 0; a < bucketCount; ++a)
+  {
+    std::size_t next = firstFace[a];
+    buckets.ForEachFace(a, pointCount, [&](const MeshFace& face) {
+      if (keep(face))
+      {
+        faces[next++] = face;
+      }
+    });
+  }
+  return faces;
+}
+} // namespace
+
+std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads)
+{
+  const int threads = ThreadCount(numberOfThreads);
+  return CollectFaces(BucketFaces(tets, pointCount, threads), pointCount, threads, [](const MeshFace&) { return true; });
+}
+
+std::vector<MeshFace> SelectMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads,
+  const std::function<bool(const MeshFace&)>& keep)
+{
+  const int threads = ThreadCount(numberOfThreads);
+  return CollectFaces(BucketFaces(tets, pointCount, threads), pointCount, threads, keep);
+}
+
+std::vector<MeshFace> SurfaceFaces(const TetMesh& mesh, int numberOfThreads)
+{
+  return SelectMeshFaces(mesh.Tets, mesh.Points.size(), numberOfThreads, [&](const MeshFace& face) {
+    return face.TetCount != 2 || mesh.Labels[face.Tets[0]] != mesh.Labels[face.Tets[1]];
+  });
+}
+
+std::vector<std::array<std::int64_t, 4>> FaceNeighbours(
+  const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads)
+{
+  const int threads = ThreadCount(numberOfThreads);
+  const FaceBuckets buckets = BucketFaces(tets, pointCount, threads);
+  std::vector<std::array<std::int64_t, 4>> across(tets.size(), { -1, -1, -1, -1 });
+  // An inner face writes only its two tets' entries for it: the buckets can go in any order.
+  const std::int64_t bucketCount = static_cast<std::int64_t>(pointCount);
+#pragma omp parallel for schedule(dynamic, 4096) num_threads(threads)
+  for (std::int64_t a = 0; a < bucketCount; ++a)
+  {
+    buckets.ForEachFace(a, pointCount, [&](const MeshFace& face) {
+      if (face.TetCount != 2)
+      {
+        return;
+      }
+      for (int side = 0; side < 2; ++side)
+      {
+        const Tet& tet = tets[face.Tets[side]];
+        for (int i = 0; i < 4; ++i)
+        {
+          if (std::find(face.Points.begin(), face.Points.end(), tet[i]) == face.Points.end())
+          {
+            across[face.Tets[side]][i] = face.Tets[1 - side];
+          }
+        }
+      }
+    });
+  }
+  return across;
+}
+} // namespace cbc3d

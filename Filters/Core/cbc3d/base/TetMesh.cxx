@@ -1,0 +1,38 @@
+#include "cbc3d/base/TetMesh.h"
+
+#include "cbc3d/base/TetGeometry.h"
+
+#include <sstream>
+
+namespace cbc3d
+{
+Status ValidateTetMesh(const TetMesh& mesh)
+{
+  if (mesh.Labels.size() != mesh.Tets.size())
+  {
+    return Status::Error("the mesh has a different number of labels and tets");
+  }
+  const PointId pointCount = static_cast<PointId>(mesh.Points.size());
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    const Tet& tet = mesh.Tets[t];
+    for (const PointId id : tet)
+    {
+      if (id < 0 || id >= pointCount)
+      {
+        std::ostringstream msg;
+        msg << "tet " << t << " refers to point " << id << " of " << pointCount;
+        return Status::Error(msg.str());
+      }
+    }
+    const auto& p = mesh.Points;
+    if (!(SignedVolume(p[tet[0]], p[tet[1]], p[tet[2]], p[tet[3]]) > 0.0))
+    {
+      std::ostringstream msg;
+      msg << "tet " << t << " is inverted or flat";
+      return Status::Error(msg.str());
+    }
+  }
+  return Status::Ok();
+}
+} // namespace cbc3d

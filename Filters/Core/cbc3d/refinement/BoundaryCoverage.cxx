@@ -1,0 +1,175 @@
+#include "cbc3d/refinement/BoundaryCoverage.h"
+
+#include "cbc3d/base/MeshFaces.h"
+#include "cbc3d/base/Parallel.h"
+#include "cbc3d/sampling/SurfacePoints.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace cbc3d
+{
+BoundaryCoverage::BoundaryCoverage(const LabelImage& image, const TissueComponents& components,
+  int minimumVoxels, double reach, int numberOfThreads)
+  : Reach(reach)
+  , Threads(numberOfThreads)
+{
+  for (const auto& [label, voxels] : TissueBoundaryVoxels(image, numberOfThreads))
+  {
+    Tissue& tissue = this->Tissues[label];
+    // Both ascend: the component runs are walked alongside the boundary voxels.
+    auto run = components.Runs.begin();
+    for (const std::int64_t v : voxels)
+    {
+      while (run->Last < v)
+        ++run;
+      if (components.Size[run->Component] >= minimumVoxels)
+      {
+        tissue.Centres.push_back(image.VoxelCentre(v));
+      }
+    }
+    // Boundary voxels are dense: a grid of a few voxels per cell keeps each query short.
+    tissue.Grid = std::make_unique<PointGrid>(tissue.Centres, 2.0 * image.Spacing.maxCoeff());
+  }
+}
+
+std::map<std::int32_t, std::vector<BoundaryCoverage::Face>> BoundaryCoverage::HeldSurfaces(
+  std::size_t pointCount, const std::vector<Tet>& tets, const std::vector<std::int32_t>& labels) const
+{
+  // Only the held tissues' tets are searched (a face they share with any other tet is one of
+  // theirs alone there), in their order, so the faces come in the same order as over the whole mesh.
+  std::vector<Tet> tissueTets;
+  std::vector<std::int64_t> tetOf;
+  tissueTets.reserve(tets.size());
+  tetOf.reserve(tets.size());
+  std::int32_t lastLabel = labels.empty() ? 0 : labels[0];
+  bool lastTracked = !labels.empty() && this->Tissues.count(lastLabel) > 0;
+  for (std::size_t t = 0; t < tets.size(); ++t)
+  {
+    if (labels[t] != lastLabel) // neighbouring tets mostly share a label: one lookup per change
+    {
+      lastLabel = labels[t];
+      lastTracked = this->Tissues.count(lastLabel) > 0;
+    }
+    if (lastTracked)
+    {
+      tissueTets.push_back(tets[t]);
+      tetOf.push_back(static_cast<std::int64_t>(t));
+    }
+  }
+  const auto bounding = [&](const MeshFace& face) {
+    return face.TetCount != 2 || labels[tetOf[face.Tets[0]]] != labels[tetOf[face.Tets[1]]];
+  };
+  std::map<std::int32_t, std::vector<Face>> surfaces;
+  for (const MeshFace& face : SelectMeshFaces(tissueTets, pointCount, this->Threads, bounding))
+  {
+    for (int side = 0; side < std::min(face.TetCount, 2); ++side)
+    {
+      const std::int64_t tet = tetOf[face.Tets[side]];
+      surfaces[labels[tet]].push_back({ face.Points, tet });
+    }
+  }
+  return surfaces;
+}
+
+void BoundaryCoverage::FindTissueGaps(const Tissue& tissue, const std::vector<Face>& faces,
+  const std::vector<Eigen::Vector3d>& points, double distance, Gaps& gaps) const
+{
+  // The surface's vertices, numbered 0..n-1 in ascending point order, and where deformation
+  // would take each.
+  std::vector<int> index(points.size(), -1);
+  for (const Face& face : faces)
+  {
+    for (const PointId p : face.Points)
+    {
+      index[p] = 0;
+    }
+  }
+  std::vector<PointId> vertices;
+  for (std::size_t p = 0; p < points.size(); ++p)
+  {
+    if (index[p] == 0)
+    {
+      index[p] = static_cast<int>(vertices.size());
+      vertices.push_back(static_cast<PointId>(p));
+    }
+  }
+  const std::int64_t vertexCount = static_cast<std::int64_t>(vertices.size());
+  std::vector<Eigen::Vector3d> predicted(vertexCount);
+  std::vector<char> stranded(vertexCount, 0);
+#pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
+  for (std::int64_t i = 0; i < vertexCount; ++i)
+  {
+    const Eigen::Vector3d& x = points[vertices[i]];
+    const int nearest = tissue.Grid->Nearest(x, this->Reach);
+    predicted[i] = nearest < 0 ? x : tissue.Centres[nearest];
+    stranded[i] = nearest < 0;
+  }
+  std::vector<Eigen::Vector3d> centroids;
+  for (const Face& face : faces)
+  {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (const PointId p : face.Points)
+    {
+      centroid += predicted[index[p]] / 3.0;
+      if (stranded[index[p]])
+      {
+        gaps.StrandedTets.push_back(face.Tet);
+      }
+    }
+    centroids.push_back(centroid);
+  }
+
+  const double cell = std::max(distance, 1e-6);
+  const PointGrid vertexGrid(predicted, cell), faceGrid(centroids, cell);
+  const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Centres.size());
+  std::vector<int> nearestFace(voxelCount, -1);
+  const std::vector<int> nearestVertex = vertexGrid.NearestAnyOfAll(tissue.Centres, this->Threads);
+  double largest = 0.0; // max and sum reductions are exact: the same for any thread count
+  std::int64_t far = 0;
+#pragma omp parallel for schedule(dynamic, 1024) reduction(max : largest) reduction(+ : far) num_threads(ThreadCount(this->Threads))
+  for (std::int64_t i = 0; i < voxelCount; ++i)
+  {
+    const Eigen::Vector3d& centre = tissue.Centres[i];
+    const double gap = (predicted[nearestVertex[i]] - centre).norm();
+    largest = std::max(largest, gap);
+    if (gap > distance)
+    {
+      nearestFace[i] = faceGrid.NearestAny(centre);
+      ++far;
+    }
+  }
+  gaps.LargestGap = std::max(gaps.LargestGap, largest);
+  gaps.FarVoxels += far;
+  std::vector<char> taken(faces.size(), 0);
+  for (const int f : nearestFace) // in voxel order: the same for any thread count
+  {
+    if (f >= 0 && !taken[f])
+    {
+      taken[f] = 1;
+      gaps.FarFaces.push_back(faces[f]);
+    }
+  }
+}
+
+BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>& points,
+  const std::vector<Tet>& tets, const std::vector<std::int32_t>& labels, double distance) const
+{
+  std::map<std::int32_t, std::vector<Face>> surfaces = this->HeldSurfaces(points.size(), tets, labels);
+  Gaps gaps;
+  for (const auto& [label, tissue] : this->Tissues)
+  {
+    const std::vector<Face>& faces = surfaces[label];
+    if (faces.empty() || tissue.Centres.empty())
+    {
+      gaps.LargestGap = faces.empty() && !tissue.Centres.empty() ? std::numeric_limits<double>::infinity()
+                                                                 : gaps.LargestGap;
+      continue;
+    }
+    this->FindTissueGaps(tissue, faces, points, distance, gaps);
+  }
+  std::sort(gaps.StrandedTets.begin(), gaps.StrandedTets.end());
+  gaps.StrandedTets.erase(std::unique(gaps.StrandedTets.begin(), gaps.StrandedTets.end()), gaps.StrandedTets.end());
+  return gaps;
+}
+} // namespace cbc3d

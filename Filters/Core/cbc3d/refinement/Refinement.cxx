@@ -1,0 +1,421 @@
+#include "cbc3d/refinement/Refinement.h"
+
+#include "cbc3d/lattice/BCCLattice.h"
+
+#include "cbc3d/base/MeshFaces.h"
+#include "cbc3d/base/Parallel.h"
+#include "cbc3d/lattice/RedGreenMesh.h"
+#include "cbc3d/refinement/BoundaryCoverage.h"
+#include "cbc3d/refinement/KeptComponents.h"
+#include "cbc3d/refinement/LabelledMesh.h"
+#include "cbc3d/refinement/SurfaceEars.h"
+#include "cbc3d/sampling/TetVoxelSampler.h"
+#include "cbc3d/sampling/TissueComponents.h"
+#include "cbc3d/soundlabels/ManifoldRepair.h"
+#include "cbc3d/soundlabels/SoundLabels.h"
+
+#include <algorithm>
+#include <atomic>
+#include <functional>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+#include <sstream>
+
+namespace cbc3d
+{
+namespace
+{
+
+// Bytes per tet at peak: the hierarchy, the final tets, their samples and the VTK output.
+constexpr double BytesPerTet = 400.0;
+
+// The image, the mesh to refine and the parameters' ranges, or an error naming what is wrong.
+Status ValidateInputs(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params)
+{
+  const Status valid = ValidateLabelImage(image);
+  if (!valid.IsOk())
+  {
+    return valid;
+  }
+  if (!(params.Fidelity >= 0.0 && params.Fidelity <= 1.0))
+  {
+    return Status::Error("the fidelity must be a number from 0 to 1");
+  }
+  if (!(params.MinimumEdgeLength >= 0.0) || !std::isfinite(params.MinimumEdgeLength))
+  {
+    return Status::Error("the minimum edge length must be 0 (automatic) or a positive length in mm");
+  }
+  if (!std::isfinite(params.BoundaryDistance))
+  {
+    return Status::Error("the boundary distance must be 0 (automatic), negative (none) or a "
+                         "length in mm");
+  }
+  if (lattice.Tets.empty())
+  {
+    return Status::Error("the mesh to refine has no tets");
+  }
+  return Status::Ok();
+}
+
+// Which leaves to split red for fidelity: those whose tets cross the boundary of a tissue below
+// the target, and those holding a tissue component that no tet of its tissue represents yet.
+std::vector<char> MarkForFidelity(const LabelImage& image, const TissueComponents& components,
+  const RefinementParams& params, const LabelledMesh& mesh,
+  const std::map<std::int32_t, TissueFidelity>& fidelity, const std::vector<char>& componentInMesh,
+  std::size_t leaves)
+{
+  auto isFailing = [&](std::int32_t label) {
+    const auto found = fidelity.find(label);
+    return found != fidelity.end() &&
+      (found->second.F1 < params.Fidelity || found->second.F2 < params.Fidelity);
+  };
+  std::vector<char> marked(leaves, 0);
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    const auto& counts = mesh.Counts[t].Counts;
+    if (counts.size() < 2)
+    {
+      continue;
+    }
+    for (const auto& entry : counts)
+    {
+      if (isFailing(entry.first))
+      {
+        marked[mesh.Source[t]] = 1;
+        break;
+      }
+    }
+  }
+  // The tets holding a component that is missing from the mesh (rare: most runs are skipped).
+  for (const TissueComponents::Run& run : components.Runs)
+  {
+    if (componentInMesh[run.Component] || IsSmall(components, run.Component, params.MinimumComponentVoxels))
+    {
+      continue;
+    }
+    for (std::int64_t v = run.First; v <= run.Last; ++v)
+    {
+      const std::int32_t owner = mesh.OwnerOf(v);
+      if (owner >= 0)
+      {
+        marked[mesh.Source[owner]] = 1;
+      }
+    }
+  }
+  return marked;
+}
+
+// How refining for the boundary distance stands between passes: the gaps the last pass found
+// (FarVoxels -1: none looked for yet), and whether a pass stopped gaining.
+struct CoverageProgress
+{
+  double LargestGap = 0.0;
+  std::int64_t FarVoxels = -1;
+  bool Stalled = false; // the later passes refine for fidelity alone
+};
+
+// Where the surface would stay far from the image boundary (more than `distance`): a new
+// surface vertex on the longest edge of the face nearest to a far boundary voxel (a green split
+// of the tets around the edge, into `bisect`), or a red split of the leaf where that edge is not
+// one of the leaf's own; and a red split of the tets with a vertex that cannot reach the
+// boundary. Returns whether any split was wanted (at the depth limit or not); none once a pass
+// brings neither the farthest voxel nearer nor fewer voxels far (`progress` then stalls).
+bool MarkForCoverage(const BoundaryCoverage& coverage, double distance, const RedGreenMesh& hierarchy,
+  const LabelledMesh& mesh, double minimumEdge, CoverageProgress& progress, std::vector<char>& marked,
+  std::vector<std::pair<PointId, PointId>>& bisect)
+{
+  const auto& x = hierarchy.Points();
+  const BoundaryCoverage::Gaps gaps = coverage.Find(x, mesh.Tets, mesh.Labels, distance);
+  BoundaryCoverage::Gaps before;
+  before.LargestGap = progress.LargestGap;
+  before.FarVoxels = progress.FarVoxels;
+  progress.LargestGap = gaps.LargestGap;
+  progress.FarVoxels = gaps.FarVoxels;
+  if (before.FarVoxels >= 0 && !gaps.NarrowerThan(before))
+  {
+    progress.Stalled = true;
+    return false;
+  }
+  const bool wanted = !gaps.FarFaces.empty() || !gaps.StrandedTets.empty();
+  for (const std::int64_t t : gaps.StrandedTets)
+  {
+    marked[mesh.Source[t]] = 1;
+  }
+  for (const BoundaryCoverage::Face& face : gaps.FarFaces)
+  {
+    int longest = 0;
+    auto length = [&](int e) { return (x[face.Points[e]] - x[face.Points[(e + 1) % 3]]).norm(); };
+    for (int e = 1; e < 3; ++e)
+    {
+      longest = length(e) > length(longest) ? e : longest;
+    }
+    const PointId a = face.Points[longest], b = face.Points[(longest + 1) % 3];
+    const std::int64_t red = mesh.Source[face.Tet];
+    const Tet& corners = hierarchy.Reds()[red].Points;
+    const bool leafEdge = std::count(corners.begin(), corners.end(), a) > 0 &&
+      std::count(corners.begin(), corners.end(), b) > 0;
+    if (!leafEdge)
+    {
+      marked[red] = 1;
+    }
+    else if (length(longest) / 2.0 >= minimumEdge * (1.0 - 1e-9))
+    {
+      bisect.emplace_back(a, b);
+    }
+  }
+  return wanted;
+}
+
+// The tissue tets, their points renumbered, and each one's red level.
+void KeepTissueTets(const LabelImage& image, const RedGreenMesh& hierarchy, const LabelledMesh& mesh,
+  TetMesh& out, RefinementResult& result)
+{
+  std::vector<PointId> newId(hierarchy.Points().size(), -1);
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    const std::int32_t label = mesh.Labels[t];
+    if (label == NoLabel || !image.IsTissue(label))
+    {
+      continue;
+    }
+    Tet tet;
+    for (int v = 0; v < 4; ++v)
+    {
+      PointId& id = newId[mesh.Tets[t][v]];
+      if (id < 0)
+      {
+        id = static_cast<PointId>(out.Points.size());
+        out.Points.push_back(hierarchy.Points()[mesh.Tets[t][v]]);
+      }
+      tet[v] = id;
+    }
+    out.Tets.push_back(tet);
+    out.Labels.push_back(label);
+    const int level = hierarchy.Reds()[mesh.Source[t]].Level;
+    result.Levels.push_back(static_cast<std::uint8_t>(level));
+    result.DeepestLevel = std::max(result.DeepestLevel, level);
+  }
+}
+
+// The check of the boundary distance (0: 3/8 of the lattice's longest edge, recorded in
+// `result`); none where the bound is negative.
+std::unique_ptr<BoundaryCoverage> MakeCoverage(const LabelImage& image, const TissueComponents& components,
+  const RefinementParams& params, const RedGreenMesh& hierarchy, RefinementResult& result)
+{
+  if (params.BoundaryDistance < 0.0)
+  {
+    return nullptr;
+  }
+  double longest = 0.0;
+  for (std::size_t red = 0; red < hierarchy.Reds().size(); ++red)
+  {
+    longest = std::max(longest, hierarchy.LongestEdge(red));
+  }
+  result.BoundaryDistance = params.BoundaryDistance > 0.0 ? params.BoundaryDistance : 0.375 * longest;
+  // Deformation moves a vertex by about an element size: the lattice's shortest edge.
+  return std::make_unique<BoundaryCoverage>(image, components, params.MinimumComponentVoxels,
+    hierarchy.ShortestEdge(0), params.NumberOfThreads);
+}
+
+// Why the passes ended. The words come last (StopReason), when the fidelity after the sound
+// labels is known as well.
+struct PassesEnd
+{
+  enum Kind
+  {
+    NoRefinementAsked, // fidelity 0
+    TargetsReached,    // no tissue's fidelity (nor the boundary distance) wants a split
+    AtMinimumEdge,     // splits are wanted, at tets that may not be split
+    MemoryLimit        // the splits would pass it
+  };
+  Kind End = TargetsReached;
+  std::int64_t ExpectedTets = 0; // with MemoryLimit: the tets the splits would have made
+};
+
+// How a stop reason begins when no tissue's fidelity wants a split.
+const std::string ReachedFidelity = "every tissue reached the fidelity target";
+
+// Why refinement ended, in words: how the passes ended, how refining for the boundary distance
+// did (`coverage`: whether there was any), and whether making the labels sound took a tissue
+// below the fidelity target after the passes had reached it (the 3 mm head's CSF and grey matter).
+std::string StopReason(const PassesEnd& passes, bool coverage, const CoverageProgress& progress, bool belowTarget)
+{
+  std::ostringstream reason;
+  switch (passes.End)
+  {
+    case PassesEnd::NoRefinementAsked:
+      return "no refinement asked (fidelity 0)";
+    case PassesEnd::AtMinimumEdge:
+      return "the tets left to refine are at the minimum edge length";
+    case PassesEnd::MemoryLimit:
+      reason << "stopped before exceeding the memory limit (about " << passes.ExpectedTets << " tets)";
+      return reason.str();
+    case PassesEnd::TargetsReached:
+      break;
+  }
+  reason << ReachedFidelity;
+  if (coverage)
+    reason << (progress.Stalled ? ", and refining for the boundary distance stopped gaining" : " and the boundary distance");
+  if (belowTarget)
+    reason << "; making the labels sound took some below it";
+  return reason.str();
+}
+
+// Unmarks the marked leaves at the depth limit (a split would make edges shorter than
+// `minimumEdge`) and counts the rest; `anyWanted` becomes true where any leaf was marked.
+std::size_t KeepSplittable(const RedGreenMesh& hierarchy, double minimumEdge, std::vector<char>& marked,
+  bool& anyWanted)
+{
+  std::size_t splits = 0;
+  for (std::size_t red = 0; red < marked.size(); ++red)
+  {
+    if (!marked[red])
+    {
+      continue;
+    }
+    anyWanted = true;
+    marked[red] = hierarchy.ShortestEdge(red) / 2.0 >= minimumEdge * (1.0 - 1e-9);
+    splits += marked[red];
+  }
+  return splits;
+}
+// How small a tet may get, and how much memory the mesh may take.
+struct PassLimits
+{
+  double MinimumEdge;
+  std::size_t MemoryBytes;
+};
+
+// Marks the reds that fidelity or coverage wants split (and that may be) and the edges coverage
+// bisects, and splits them; false, with how the passes ended in `end`, when there is nothing
+// left to split or the splits would pass the memory limit.
+bool SplitOnePass(const LabelImage& image, const TissueComponents& components, const RefinementParams& params,
+  const BoundaryCoverage* coverage, double distance, const PassLimits& limits,
+  const std::map<std::int32_t, TissueFidelity>& fidelity, const std::vector<char>& componentInMesh,
+  const LabelledMesh& mesh, RedGreenMesh& hierarchy, CoverageProgress& progress, PassesEnd& end)
+{
+  std::vector<char> marked = MarkForFidelity(image, components, params, mesh, fidelity, componentInMesh,
+    hierarchy.Reds().size());
+  std::vector<std::pair<PointId, PointId>> bisect;
+  const bool coverageWanted = coverage && !progress.Stalled &&
+    MarkForCoverage(*coverage, distance, hierarchy, mesh, limits.MinimumEdge, progress, marked, bisect);
+  bool anyWanted = coverageWanted;
+  const std::size_t splits = KeepSplittable(hierarchy, limits.MinimumEdge, marked, anyWanted);
+  if (splits == 0 && bisect.empty())
+  {
+    end.End = anyWanted ? PassesEnd::AtMinimumEdge : PassesEnd::TargetsReached;
+    return false;
+  }
+  // Each red split makes 8 tets of one; closure adds some more.
+  const double expectedTets = double(mesh.Tets.size()) + 10.0 * double(splits) + 6.0 * double(bisect.size());
+  if (expectedTets * BytesPerTet > double(limits.MemoryBytes))
+  {
+    end.End = PassesEnd::MemoryLimit;
+    end.ExpectedTets = std::llround(expectedTets);
+    return false;
+  }
+  for (std::size_t red = 0; red < marked.size(); ++red)
+  {
+    if (marked[red])
+    {
+      hierarchy.SplitRed(red);
+    }
+  }
+  for (const auto& [a, b] : bisect)
+  {
+    hierarchy.SplitEdge(a, b);
+  }
+  return true;
+}
+} // namespace
+
+Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params,
+  TetMesh& out, RefinementResult& result, const Progress& progress)
+{
+  out = TetMesh();
+  result = RefinementResult();
+  const Status valid = ValidateInputs(image, lattice, params);
+  if (!valid.IsOk())
+  {
+    return valid;
+  }
+  const double minimumEdge = params.MinimumEdgeLength > 0.0 ? params.MinimumEdgeLength
+                                                            : std::cbrt(image.Spacing.prod());
+  const std::size_t memoryLimit =
+    params.MemoryLimitBytes > 0 ? params.MemoryLimitBytes : PhysicalMemoryBytes() / 2;
+
+  const TissueComponents components = FindTissueComponents(image);
+  // Sound labels need background on both sides of a thin sheet of tissue to thicken it into.
+  TetMesh ringed = lattice;
+  if (params.SoundLabels)
+    AddBackgroundRing(image, ringed);
+  RedGreenMesh hierarchy(ringed);
+  const std::unique_ptr<BoundaryCoverage> coverage = MakeCoverage(image, components, params, hierarchy, result);
+  LabelledMesh mesh;
+  std::map<std::int32_t, TissueFidelity> fidelity;
+  std::vector<char> componentInMesh;
+  CoverageProgress coverageProgress;
+  PassesEnd passesEnd;
+  const int expectedPasses = 2 + static_cast<int>(std::ceil(std::log2(
+    std::max(1.0, hierarchy.ShortestEdge(0) / minimumEdge))));
+
+  for (int pass = 0;; ++pass)
+  {
+    const double done = std::min(0.95, double(pass + 1) / double(expectedPasses + 1));
+    const std::function<bool()> keepGoing = [&] { return KeepGoing(progress, done); };
+    if (!hierarchy.Close(keepGoing) || !SampleAll(image, hierarchy, params.NumberOfThreads, mesh, keepGoing))
+    {
+      return Status::Aborted();
+    }
+    fidelity = MeasureFidelity(
+      image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
+    if (params.Fidelity == 0.0)
+    {
+      passesEnd.End = PassesEnd::NoRefinementAsked;
+      break;
+    }
+
+    if (!SplitOnePass(image, components, params, coverage.get(), result.BoundaryDistance,
+          PassLimits{ minimumEdge, memoryLimit }, fidelity, componentInMesh, mesh, hierarchy, coverageProgress,
+          passesEnd))
+    {
+      break;
+    }
+    ++result.Passes;
+  }
+
+  ResolveOwners(mesh, params.NumberOfThreads);
+  // Spikes on the surface would keep their tips off the image boundary through deformation.
+  const auto across = FaceNeighbours(mesh.Tets, hierarchy.Points().size(), params.NumberOfThreads);
+  if (RemoveSurfaceEars(mesh.Tets, across, hierarchy.Points().size(), mesh.Labels,
+        [&](std::int32_t label) { return label != NoLabel && image.IsTissue(label); }, NoLabel) > 0)
+  {
+    fidelity = MeasureFidelity(
+      image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
+  }
+
+  fidelity = KeepComponentsAndMakeSound(image, components, params, hierarchy.Points(), across, mesh, componentInMesh,
+    result.Relabelled);
+
+  KeepTissueTets(image, hierarchy, mesh, out, result);
+  for (const auto& entry : fidelity)
+  {
+    result.Tissues.push_back(entry.second);
+  }
+  result.LargestBoundaryGap = coverageProgress.LargestGap;
+  const bool belowTarget = std::any_of(result.Tissues.begin(), result.Tissues.end(),
+    [&](const TissueFidelity& t) { return t.F1 < params.Fidelity || t.F2 < params.Fidelity; });
+  result.StopReason = StopReason(passesEnd, coverage != nullptr, coverageProgress, belowTarget);
+  if (out.Tets.empty())
+  {
+    return Status::Error("no tet holds a majority of tissue voxels; use a smaller lattice size");
+  }
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return Status::Ok();
+}
+} // namespace cbc3d
