@@ -3,6 +3,7 @@
 #include "vtkCBC3DConvert.h"
 #include "vtkCBC3DLabelImageCache.h"
 
+#include "cbc3d/base/EdgeLengthLimits.h"
 #include "cbc3d/base/LabelCodes.h"
 #include "cbc3d/base/LabelImage.h"
 #include "cbc3d/base/Status.h"
@@ -159,6 +160,46 @@ int vtkCBC3DAlgorithm::EndOnFailure(const cbc3d::Status& status, vtkUnstructured
   return 0;
 }
 
+void vtkCBC3DAlgorithm::SetTissueMaximumEdgeLength(double label, double length)
+{
+  this->TissueMaximumEdgeLength[static_cast<long long>(label)] = length;
+  this->Modified();
+}
+
+void vtkCBC3DAlgorithm::RemoveAllTissueMaximumEdgeLengths()
+{
+  if (!this->TissueMaximumEdgeLength.empty())
+  {
+    this->TissueMaximumEdgeLength.clear();
+    this->Modified();
+  }
+}
+
+bool vtkCBC3DAlgorithm::ReadEdgeLimits(const cbc3d::LabelImage& image, cbc3d::EdgeLengthLimits& limits)
+{
+  limits.All = this->MaximumEdgeLength;
+  std::string error;
+  if (!vtkCBC3DConvert::ToTissueCodes(this->TissueMaximumEdgeLength, image, limits.ByTissue, error))
+  {
+    vtkErrorMacro(<< error);
+    return false;
+  }
+  return true;
+}
+
+void vtkCBC3DAlgorithm::CopyEdgeLimitsTo(vtkCBC3DAlgorithm* stage) const
+{
+  stage->SetMaximumEdgeLength(this->MaximumEdgeLength);
+  stage->RemoveAllTissueMaximumEdgeLengths();
+  for (const auto& [label, length] : this->TissueMaximumEdgeLength)
+    stage->SetTissueMaximumEdgeLength(static_cast<double>(label), length);
+}
+
+bool vtkCBC3DAlgorithm::HasEdgeLimits() const
+{
+  return this->MaximumEdgeLength > 0.0 || !this->TissueMaximumEdgeLength.empty();
+}
+
 void vtkCBC3DAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
@@ -169,4 +210,8 @@ void vtkCBC3DAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
   }
   os << "\n";
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "MaximumEdgeLength: " << this->MaximumEdgeLength << " mm";
+  for (const auto& [label, length] : this->TissueMaximumEdgeLength)
+    os << ", tissue " << label << ": " << length << " mm";
+  os << "\n";
 }

@@ -16,6 +16,7 @@
 #include "vtkCBC3DFiltersModule.h" // For export macro
 #include "vtkUnstructuredGridAlgorithm.h"
 
+#include <map>    // For the edge limits of tissues
 #include <memory> // For the shared label image
 #include <vector> // For background labels
 
@@ -27,6 +28,7 @@ namespace cbc3d
 {
 class LabelCodes;
 class Status;
+struct EdgeLengthLimits;
 struct LabelImage;
 struct TetMesh;
 }
@@ -54,6 +56,20 @@ public:
    */
   vtkSetClampMacro(NumberOfThreads, int, 0, VTK_INT_MAX);
   vtkGetMacro(NumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /**
+   * Edge limits in mm, for the filters that make or move edges (Refinement, Deformation and
+   * the one-shot Mesher; the other stages ignore them): no tet of a tissue keeps an edge longer
+   * than MaximumEdgeLength (0, the default: no limit), or than its tissue's own limit, given by
+   * label value. A label the image lacks, or a background label, fails the run with an error
+   * naming it.
+   */
+  vtkSetMacro(MaximumEdgeLength, double);
+  vtkGetMacro(MaximumEdgeLength, double);
+  void SetTissueMaximumEdgeLength(double label, double length);
+  void RemoveAllTissueMaximumEdgeLengths();
   ///@}
 
   ///@{
@@ -112,8 +128,18 @@ protected:
 
   int ImagePort;
   bool ImageOptional;
+  /// The edge limits by the image's label codes; false, with vtkErrorMacro, for a label the
+  /// image lacks or a background label.
+  bool ReadEdgeLimits(const cbc3d::LabelImage& image, cbc3d::EdgeLengthLimits& limits);
+  /// Gives `stage` this filter's edge limits.
+  void CopyEdgeLimitsTo(vtkCBC3DAlgorithm* stage) const;
+  /// Whether any edge limit is set.
+  bool HasEdgeLimits() const;
+
   std::vector<vtkTypeInt64> BackgroundLabels = { 0 };
   int NumberOfThreads = 0;
+  double MaximumEdgeLength = 0.0;
+  std::map<long long, double> TissueMaximumEdgeLength; // label value -> mm
 
 private:
   vtkCBC3DAlgorithm(const vtkCBC3DAlgorithm&) = delete;

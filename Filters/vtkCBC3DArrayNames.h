@@ -23,7 +23,8 @@
  * `DeformationSources`, `DeformationTargets`.
  *
  * Field data (vtkCBC3DRefinement): `RefinementPasses`, `RefinementStopReason`,
- * `RefinementBoundaryDistance`, `RefinementBoundaryGap`, `RefinementRelabelledTets`, and per tissue
+ * `RefinementBoundaryDistance`, `RefinementBoundaryGap`, `RefinementRelabelledTets`, `RefinementOverlongTets` (tissue tets with
+ * an edge beyond their limit, MaximumEdgeLength), and per tissue
  * `FidelityLabel`, `FidelityF1`, `FidelityF2`, `FidelityComponents`, `FidelityComponentsInMesh`.
  *
  * Field data (vtkCBC3DMeshQuality; its class comment says what each holds): over the whole
@@ -62,6 +63,7 @@ constexpr const char* RefinementStopReason = "RefinementStopReason";
 constexpr const char* RefinementBoundaryDistance = "RefinementBoundaryDistance";
 constexpr const char* RefinementBoundaryGap = "RefinementBoundaryGap";
 constexpr const char* RefinementRelabelledTets = "RefinementRelabelledTets";
+constexpr const char* RefinementOverlongTets = "RefinementOverlongTets";
 constexpr const char* Displacement = "Displacement";
 constexpr const char* DeformationIterations = "DeformationIterations";
 constexpr const char* DeformationStopReason = "DeformationStopReason";

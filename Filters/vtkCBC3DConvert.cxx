@@ -270,6 +270,28 @@ vtkDataArray* MeshLabels(vtkUnstructuredGrid* grid, std::string& error)
   return labels;
 }
 
+bool ToTissueCodes(const std::map<long long, double>& byValue, const cbc3d::LabelImage& image,
+  std::map<std::int32_t, double>& byCode, std::string& error)
+{
+  byCode.clear();
+  for (const auto& [value, setting] : byValue)
+  {
+    std::int32_t code = 0;
+    if (!image.Codes.FindCode(value, code))
+    {
+      error = "the image has no label " + std::to_string(value);
+      return false;
+    }
+    if (!image.IsTissue(code))
+    {
+      error = "label " + std::to_string(value) + " is background, not a tissue";
+      return false;
+    }
+    byCode[code] = setting;
+  }
+  return true;
+}
+
 bool MeshLabelValues(vtkUnstructuredGrid* grid, std::vector<std::int64_t>& values, std::string& error)
 {
   vtkDataArray* labels = MeshLabels(grid, error);

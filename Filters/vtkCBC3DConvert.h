@@ -17,6 +17,7 @@
 #include <vtkType.h>
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,13 @@ vtkDataArray* ChooseLabelArray(vtkInformation* arrayRequest, vtkImageData* image
 bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   const std::vector<vtkTypeInt64>& backgroundLabels, cbc3d::LabelImage& out, std::string& error,
   std::vector<std::int64_t> otherValues = {}, int threads = 1);
+
+/**
+ * Per-tissue settings given by label value (`byValue`) as settings by the image's label codes;
+ * false with a one-line message naming a label the image cannot hold or a background label.
+ */
+bool ToTissueCodes(const std::map<long long, double>& byValue, const cbc3d::LabelImage& image,
+  std::map<std::int32_t, double>& byCode, std::string& error);
 
 /// Appends the distinct values of the grid's `Label` cell array; false with a one-line message.
 bool MeshLabelValues(vtkUnstructuredGrid* grid, std::vector<std::int64_t>& values, std::string& error);

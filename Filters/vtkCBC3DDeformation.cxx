@@ -95,6 +95,10 @@ int vtkCBC3DDeformation::RequestData(
     }
   }
   params.NumberOfThreads = this->NumberOfThreads;
+  if (!this->ReadEdgeLimits(*image, params.MaximumEdge))
+  {
+    return 0;
+  }
   cbc3d::TetMesh moved;
   cbc3d::DeformationResult result;
   const cbc3d::Status status =

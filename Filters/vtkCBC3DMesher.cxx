@@ -67,6 +67,15 @@ int vtkCBC3DMesher::RequestData(
   lattice->SetEdgeLength(this->EdgeLength);
   refinement->SetFidelity(this->Fidelity);
   refinement->SetBoundaryDistance(this->BoundaryDistance);
+  refinement->SetMinimumEdgeLength(this->MinimumEdgeLength);
+  this->CopyEdgeLimitsTo(refinement);
+  this->CopyEdgeLimitsTo(deformation);
+  bool refine = this->Fidelity > 0.0 || this->HasEdgeLimits();
+  for (const auto& [label, fidelity] : this->TissueFidelity)
+  {
+    refinement->SetTissueFidelity(static_cast<double>(label), fidelity);
+    refine = refine || fidelity > 0.0;
+  }
   deformation->SetIterations(this->Iterations);
   deformation->SetPattern(this->Pattern);
   deformation->SetTargetPlacement(this->TargetPlacement);
@@ -84,7 +93,7 @@ int vtkCBC3DMesher::RequestData(
     double Share;
   };
   std::vector<Stage> stages = { { lattice, "BCC lattice", 0.15 } };
-  if (this->Fidelity > 0.0)
+  if (refine)
   {
     stages.push_back({ refinement, "Red-green refinement", 0.25 });
   }
@@ -153,11 +162,24 @@ int vtkCBC3DMesher::RequestData(
   return 1;
 }
 
+void vtkCBC3DMesher::SetTissueFidelity(double label, double fidelity)
+{
+  this->TissueFidelity[static_cast<long long>(label)] = fidelity;
+  this->Modified();
+}
+
+void vtkCBC3DMesher::RemoveAllTissueFidelities()
+{
+  this->TissueFidelity.clear();
+  this->Modified();
+}
+
 void vtkCBC3DMesher::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "EdgeLength: " << this->EdgeLength << " mm" << (this->EdgeLength == 0 ? " (auto)" : "") << "\n";
   os << indent << "Fidelity: " << this->Fidelity << "\n";
+  os << indent << "MinimumEdgeLength: " << this->MinimumEdgeLength << " mm\n";
   os << indent << "BoundaryDistance: " << this->BoundaryDistance << " mm\n";
   os << indent << "Iterations: " << this->Iterations << "\n";
   os << indent << "Pattern: " << this->Pattern << "\n";

@@ -2,7 +2,7 @@
  * @class   vtkCBC3DMesher
  * @brief   Label image in, final CBC3D mesh out: lattice, refinement, deformation and quality.
  *
- * Runs vtkCBC3DBCCLattice, vtkCBC3DRefinement (when Fidelity > 0), vtkCBC3DDeformation (when
+ * Runs vtkCBC3DBCCLattice, vtkCBC3DRefinement (when a fidelity or an edge limit asks for it), vtkCBC3DDeformation (when
  * Iterations > 0) and vtkCBC3DMeshQuality (with the image) in one go, reporting progress per
  * stage (with the stage's name as progress text) and stopping within a stage's next progress
  * report when aborted, with an empty output. The output holds every array of the stages:
@@ -16,6 +16,8 @@
 
 #include "vtkCBC3DAlgorithm.h"
 #include "vtkCBC3DFiltersModule.h" // For export macro
+
+#include <map> // For the per-tissue targets
 
 class VTKCBC3DFILTERS_EXPORT vtkCBC3DMesher : public vtkCBC3DAlgorithm
 {
@@ -38,6 +40,25 @@ public:
    */
   vtkSetMacro(Fidelity, double);
   vtkGetMacro(Fidelity, double);
+  ///@}
+
+  ///@{
+  /**
+   * Refinement makes no edge shorter than this, in mm (default 0: the voxel size). The edge
+   * limits (MaximumEdgeLength, SetTissueMaximumEdgeLength: vtkCBC3DAlgorithm) go to
+   * refinement, which splits until every tissue tet keeps them, and to deformation, which
+   * stretches no edge past them.
+   */
+  vtkSetMacro(MinimumEdgeLength, double);
+  vtkGetMacro(MinimumEdgeLength, double);
+  ///@}
+
+  ///@{
+  /**
+   * Fidelity targets of single tissues, by label value, in place of Fidelity for them.
+   */
+  void SetTissueFidelity(double label, double fidelity);
+  void RemoveAllTissueFidelities();
   ///@}
 
   ///@{
@@ -89,6 +110,8 @@ protected:
   double EdgeLength = 0.0;
   double Fidelity = 0.95;
   double BoundaryDistance = 0.0;
+  double MinimumEdgeLength = 0.0;
+  std::map<long long, double> TissueFidelity; // label value -> F
   int Iterations = 5;
   int Pattern = 1;
   int TargetPlacement = 1; // vtkCBC3DDeformation::VOXEL_FACE

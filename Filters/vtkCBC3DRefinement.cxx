@@ -45,6 +45,16 @@ int vtkCBC3DRefinement::RequestData(
   params.BoundaryDistance = this->BoundaryDistance;
   params.SoundLabels = this->SoundLabels;
   params.NumberOfThreads = this->NumberOfThreads;
+  std::string error;
+  if (!vtkCBC3DConvert::ToTissueCodes(this->TissueFidelity, *image, params.FidelityByTissue, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  if (!this->ReadEdgeLimits(*image, params.MaximumEdge))
+  {
+    return 0;
+  }
   cbc3d::TetMesh mesh;
   cbc3d::RefinementResult result;
   const cbc3d::Status status =
@@ -83,6 +93,10 @@ int vtkCBC3DRefinement::RequestData(
   relabelled->SetName(names::RefinementRelabelledTets);
   relabelled->InsertNextValue(result.Relabelled);
   fields->AddArray(relabelled);
+  vtkNew<vtkIdTypeArray> overlong;
+  overlong->SetName(names::RefinementOverlongTets);
+  overlong->InsertNextValue(static_cast<vtkIdType>(result.OverlongTets));
+  fields->AddArray(overlong);
   std::vector<std::int32_t> labels;
   vtkNew<vtkDoubleArray> f1, f2;
   f1->SetName(names::FidelityF1);
@@ -105,6 +119,21 @@ int vtkCBC3DRefinement::RequestData(
     fields->AddArray(array);
   }
   return 1;
+}
+
+void vtkCBC3DRefinement::SetTissueFidelity(double label, double fidelity)
+{
+  this->TissueFidelity[static_cast<long long>(label)] = fidelity;
+  this->Modified();
+}
+
+void vtkCBC3DRefinement::RemoveAllTissueFidelities()
+{
+  if (!this->TissueFidelity.empty())
+  {
+    this->TissueFidelity.clear();
+    this->Modified();
+  }
 }
 
 void vtkCBC3DRefinement::PrintSelf(ostream& os, vtkIndent indent)

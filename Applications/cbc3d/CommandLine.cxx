@@ -25,7 +25,8 @@ bool IsSurfaceExtension(const std::string& extension)
 std::string UsageText()
 {
   return R"(usage: cbc3d INPUT -o OUTPUT [-o OUTPUT]... [--msh-version 4.1|2.2] [--surfaces FILE]
-             [--bcc-size MM] [--fidelity F] [--boundary-distance MM]
+             [--bcc-size MM] [--fidelity [L=]F]... [--boundary-distance MM]
+             [--max-edge [L=]MM]... [--min-edge MM]
              [--pattern vertex|edge|face|none] [--targets centre|face]
              [--keep-volumes on|off]
              [--iterations N] [--background L]...
@@ -50,8 +51,14 @@ Mesh a 3-D label image into a conforming multi-tissue tetrahedral mesh (CBC3D).
                       SurfaceId), .stl or .obj (geometry only)
   --bcc-size MM       lattice cube edge in mm (default: 8 x the finest voxel spacing;
                       at most the image's extent along its widest axis)
-  --fidelity F        voxel fidelity target in [0, 1] for refinement (default 0.95;
-                      0 = no refinement)
+  --fidelity [L=]F    voxel fidelity target in [0, 1] for refinement (default 0.95;
+                      0 = no refinement); L=F sets it for tissue L alone (repeat for
+                      several)
+  --max-edge [L=]MM   no tet of a tissue keeps an edge longer than MM at the end of
+                      refinement (default: no limit); L=MM for tissue L alone (repeat
+                      for several). Tets near a tissue with a limit are refined too
+  --min-edge MM       refinement makes no edge shorter than MM (default: the voxel
+                      size, the cube root of the voxel volume)
   --boundary-distance MM
                       refinement adds surface vertices until every boundary voxel
                       would end within MM of one after deformation (the Hausdorff
@@ -205,6 +212,25 @@ bool AddOutput(const std::string& text, Parsing& parsing, std::string&)
   return true;
 }
 
+// A value for every tissue ("F") or for one ("LABEL=F"), each checked by `allowed`.
+bool SetPerTissue(const std::string& text, double& all, std::map<long long, double>& byTissue,
+  bool (*allowed)(double))
+{
+  const std::size_t equals = text.find('=');
+  double value = 0.0;
+  if (equals == std::string::npos)
+  {
+    return ParseDouble(text, value) && allowed(value) && (all = value, true);
+  }
+  long long label = 0;
+  if (!ParseLabel(text.substr(0, equals), label) || !ParseDouble(text.substr(equals + 1), value) || !allowed(value))
+  {
+    return false;
+  }
+  byTissue[label] = value;
+  return true;
+}
+
 // The options that write files, and how the mesh is made.
 const std::map<std::string, SetValue>& ValueOptions()
 {
@@ -220,8 +246,15 @@ const std::map<std::string, SetValue>& ValueOptions()
        return (ParseDouble(t, p.Options.BCCSize) && p.Options.BCCSize > 0.0) ||
          Refuse("--bcc-size", "a positive number of millimetres", t, e); } },
     { "--fidelity", [](const std::string& t, Parsing& p, std::string& e) {
-       return (ParseDouble(t, p.Options.Fidelity) && p.Options.Fidelity >= 0.0 && p.Options.Fidelity <= 1.0) ||
-         Refuse("--fidelity", "a number from 0 to 1", t, e); } },
+       return SetPerTissue(t, p.Options.Fidelity, p.Options.TissueFidelity,
+                [](double f) { return f >= 0.0 && f <= 1.0; }) ||
+         Refuse("--fidelity", "a number from 0 to 1, or LABEL=F", t, e); } },
+    { "--max-edge", [](const std::string& t, Parsing& p, std::string& e) {
+       return SetPerTissue(t, p.Options.MaxEdge, p.Options.TissueMaxEdge, [](double mm) { return mm > 0.0; }) ||
+         Refuse("--max-edge", "a positive number of millimetres, or LABEL=MM", t, e); } },
+    { "--min-edge", [](const std::string& t, Parsing& p, std::string& e) {
+       return (ParseDouble(t, p.Options.MinEdge) && p.Options.MinEdge > 0.0) ||
+         Refuse("--min-edge", "a positive number of millimetres", t, e); } },
     { "--boundary-distance", [](const std::string& t, Parsing& p, std::string& e) {
        return ParseDouble(t, p.Options.BoundaryDistance) ||
          Refuse("--boundary-distance", "a number of millimetres", t, e); } },
@@ -310,4 +343,12 @@ bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::
     options.BackgroundLabels = parsing.Backgrounds;
   }
   return options.ShowHelp || options.ShowVersion || CheckPositional(positional, options, error);
+}
+
+bool CommandLineOptions::AsksForRefinement() const
+{
+  const auto positive = [](const std::map<long long, double>& values) {
+    return std::any_of(values.begin(), values.end(), [](const auto& entry) { return entry.second > 0.0; });
+  };
+  return this->Fidelity > 0.0 || positive(this->TissueFidelity) || this->MaxEdge > 0.0 || positive(this->TissueMaxEdge);
 }

@@ -1,6 +1,7 @@
 #ifndef cbc3d_CommandLine_h
 #define cbc3d_CommandLine_h
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,10 @@ struct CommandLineOptions
   std::string SurfacesPath;          // --surfaces: the boundary and interface triangles
   double BCCSize = 0.0;    // mm; 0 = 8 x the finest voxel spacing
   double Fidelity = 0.95;  // 0 = no refinement
+  std::map<long long, double> TissueFidelity; // --fidelity LABEL=F
+  double MaxEdge = 0.0;    // mm; 0 = no limit
+  std::map<long long, double> TissueMaxEdge;  // --max-edge LABEL=MM
+  double MinEdge = 0.0;    // mm; 0 = the voxel size
   double BoundaryDistance = 0.0; // mm; 0 = 3/8 of the lattice size, negative = none
   std::string Pattern = "edge";
   std::string Targets = "face";   // where deformation targets sit: centre or face
@@ -25,6 +30,9 @@ struct CommandLineOptions
   bool Quiet = false;
   bool ShowHelp = false;
   bool ShowVersion = false;
+
+  /// Whether refinement runs: a fidelity above 0 or an edge limit asks for it.
+  bool AsksForRefinement() const;
 };
 
 /// Parses argv; false with a one-line message on any unknown option or bad value.

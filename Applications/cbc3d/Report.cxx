@@ -215,6 +215,7 @@ bool CollectQuality(vtkUnstructuredGrid* mesh, RunReport& report)
     read(names::RefinementBoundaryDistance, 0, report.RefinementBoundaryDistance);
     read(names::RefinementBoundaryGap, 0, report.RefinementBoundaryGap);
     read(names::RefinementRelabelledTets, 0, report.RefinementRelabelledTets);
+    read(names::RefinementOverlongTets, 0, report.RefinementOverlongTets);
     report.RefinementStopReason = FieldText(mesh, names::RefinementStopReason);
     for (vtkIdType i = 0; i < fidelityLabels->GetNumberOfTuples(); ++i)
     {
@@ -285,6 +286,11 @@ std::string FormatSummary(const RunReport& report)
       out << " (boundary distance " << Fixed(report.RefinementBoundaryDistance, 2)
           << " mm, predicted farthest voxel " << Fixed(report.RefinementBoundaryGap, 2) << " mm)";
     }
+    if (report.RefinementOverlongTets > 0.0)
+    {
+      out << "; " << static_cast<long long>(report.RefinementOverlongTets)
+          << " tissue tets keep an edge beyond their --max-edge (at --min-edge)";
+    }
     out << "\n  tissue  F1      F2      components (kept / in image)\n";
     for (const auto& [label, f] : report.Tissues)
     {
@@ -317,7 +323,16 @@ std::string FormatJson(const RunReport& report)
   doc["parameters"] = { { "bcc_size_mm", report.BCCSizeUsed }, { "fidelity", o.Fidelity },
     { "boundary_distance_mm", o.BoundaryDistance },
     { "pattern", o.Pattern }, { "targets", o.Targets }, { "keep_volumes", o.KeepVolumes }, { "iterations", o.Iterations },
-    { "background", o.BackgroundLabels }, { "threads", o.Threads } };
+    { "background", o.BackgroundLabels }, { "threads", o.Threads }, { "max_edge_mm", o.MaxEdge },
+    { "min_edge_mm", o.MinEdge } };
+  for (const auto& [key, values] : { std::make_pair("tissue_fidelity", &o.TissueFidelity),
+         std::make_pair("tissue_max_edge_mm", &o.TissueMaxEdge) })
+  {
+    nlohmann::json byLabel = nlohmann::json::object();
+    for (const auto& [label, value] : *values)
+      byLabel[std::to_string(label)] = value;
+    doc["parameters"][key] = byLabel;
+  }
   AddFigures(doc, report.Overall);
   doc["points"] = report.Points;
   nlohmann::json topology;
@@ -336,7 +351,8 @@ std::string FormatJson(const RunReport& report)
       { "stop_reason", report.RefinementStopReason },
       { "boundary_distance_mm", report.RefinementBoundaryDistance },
       { "predicted_boundary_gap_mm", report.RefinementBoundaryGap },
-      { "relabelled_tets", static_cast<long long>(report.RefinementRelabelledTets) } };
+      { "relabelled_tets", static_cast<long long>(report.RefinementRelabelledTets) },
+      { "overlong_tets", static_cast<long long>(report.RefinementOverlongTets) } };
   }
   if (report.DeformationIterations >= 0)
   {

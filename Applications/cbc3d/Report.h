@@ -75,6 +75,7 @@ struct RunReport
   std::string RefinementStopReason;
   double RefinementBoundaryDistance = 0.0; // the bound used (mm); 0 when none
   double RefinementRelabelledTets = 0.0;  // tets relabelled for sound labels
+  double RefinementOverlongTets = 0.0;    // tissue tets with an edge beyond --max-edge
   double RefinementBoundaryGap = 0.0;      // farthest boundary voxel from the predicted surface
   int DeformationIterations = -1;          // -1: no deformation
   std::string DeformationStopReason;

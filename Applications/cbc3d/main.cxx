@@ -196,15 +196,25 @@ struct MeshingStages
 // 0), deformation (iterations above 0), and the quality filter on the last of them.
 void ConfigureStages(MeshingStages& stages, vtkImageData* image, const CommandLineOptions& options)
 {
+  // Refinement splits to the edge limits; deformation stretches no edge past them.
+  for (vtkCBC3DAlgorithm* stage : std::initializer_list<vtkCBC3DAlgorithm*>{ stages.Refinement, stages.Deformation })
+  {
+    stage->SetMaximumEdgeLength(options.MaxEdge);
+    for (const auto& [label, length] : options.TissueMaxEdge)
+      stage->SetTissueMaximumEdgeLength(static_cast<double>(label), length);
+  }
   stages.Lattice->SetInputData(image);
   stages.Lattice->SetEdgeLength(options.BCCSize);
   vtkAlgorithm* last = stages.Lattice;
-  if (options.Fidelity > 0.0)
+  if (options.AsksForRefinement())
   {
     stages.Refinement->SetInputConnection(last->GetOutputPort());
     stages.Refinement->SetImageData(image);
     stages.Refinement->SetFidelity(options.Fidelity);
     stages.Refinement->SetBoundaryDistance(options.BoundaryDistance);
+    stages.Refinement->SetMinimumEdgeLength(options.MinEdge);
+    for (const auto& [label, fidelity] : options.TissueFidelity)
+      stages.Refinement->SetTissueFidelity(static_cast<double>(label), fidelity);
     last = stages.Refinement;
   }
   if (options.Iterations > 0)
@@ -239,7 +249,7 @@ vtkUnstructuredGrid* RunStages(
   }
   vtkDataArray* edge = stages.Lattice->GetOutput()->GetFieldData()->GetArray(vtkCBC3DArrayNames::LatticeEdgeLength);
   report.BCCSizeUsed = edge ? edge->GetTuple1(0) : options.BCCSize;
-  if ((options.Fidelity > 0.0 && !RunStage(stages.Refinement, "refinement", showProgress, report, error)) ||
+  if ((options.AsksForRefinement() && !RunStage(stages.Refinement, "refinement", showProgress, report, error)) ||
     (options.Iterations > 0 && !RunStage(stages.Deformation, "deformation", showProgress, report, error)) ||
     !RunStage(stages.Quality, "quality", showProgress, report, error))
   {

@@ -3,12 +3,15 @@
 byte for byte: the check for changes meant to leave every mesh as it was (moves, splits,
 refactoring).
 
-    python3 Testing/Benchmark/same_meshes.py BEFORE/bin/cbc3d AFTER/bin/cbc3d
+    python3 Testing/Benchmark/same_meshes.py BEFORE/bin/cbc3d AFTER/bin/cbc3d [--format inp]
 
 The cases: the brain at the paper's settings and at defaults, the nidus at the paper's
 settings, the ventricles and the 3 mm head (nipype) at defaults, and the k-means head at
 defaults and, with the air (label 1) as background, at the paper's settings. Prints one line a
-case with both .vtu files' SHA-256 and exits 1 when any differ. Needs ../shared/data; skips
+case with both files' SHA-256 and exits 1 when any differ. The files are .vtu by default: the
+mesh with every figure of its field data. `--format inp` compares the Abaqus files instead (every
+coordinate to the last bit, tets, tissues and surfaces), for changes that add a figure to the
+field data but must leave the meshes as they were. Needs ../shared/data; skips
 (exit 0, with a message) where it is absent.
 """
 import hashlib
@@ -31,8 +34,8 @@ CASES = [
 ]
 
 
-def mesh_digest(cli, image, options, work):
-    output = os.path.join(work, "mesh.vtu")
+def mesh_digest(cli, image, options, work, extension):
+    output = os.path.join(work, "mesh." + extension)
     if os.path.exists(output):
         os.remove(output)
     subprocess.run([cli, os.path.join(SHARED, image), "-o", output, "--threads", "2"] + options,
@@ -42,7 +45,12 @@ def mesh_digest(cli, image, options, work):
 
 
 def main():
-    if len(sys.argv) != 3:
+    arguments = sys.argv[1:]
+    extension = "vtu"
+    if len(arguments) == 4 and arguments[2] == "--format" and arguments[3] in ("vtu", "inp"):
+        extension = arguments[3]
+        arguments = arguments[:2]
+    if len(arguments) != 2:
         print(__doc__)
         return 2
     if not os.path.isdir(SHARED):
@@ -51,8 +59,8 @@ def main():
     differing = 0
     with tempfile.TemporaryDirectory() as work:
         for name, image, options in CASES:
-            before = mesh_digest(sys.argv[1], image, options, work)
-            after = mesh_digest(sys.argv[2], image, options, work)
+            before = mesh_digest(arguments[0], image, options, work, extension)
+            after = mesh_digest(arguments[1], image, options, work, extension)
             same = before == after
             differing += not same
             print("%-30s %s %s %s" % (name, before[:16], after[:16], "same" if same else "DIFFERENT"),

@@ -68,4 +68,10 @@ bool DihedralAnglesWithin(const Vec3& p0, const Vec3& p1, const Vec3& p2, const 
 {
   return LargestDihedralCosine(p0, p1, p2, p3) <= std::cos(minimum);
 }
+
+double LongestEdge(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3)
+{
+  return std::sqrt(std::max({ (p1 - p0).squaredNorm(), (p2 - p0).squaredNorm(), (p3 - p0).squaredNorm(),
+    (p2 - p1).squaredNorm(), (p3 - p1).squaredNorm(), (p3 - p2).squaredNorm() }));
+}
 } // namespace cbc3d

@@ -27,6 +27,9 @@ double LargestDihedralCosine(const Vec3& p0, const Vec3& p1, const Vec3& p2, con
 bool DihedralAnglesWithin(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3,
   double minimum);
 
+/// The length of the longest of the six edges.
+double LongestEdge(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3);
+
 constexpr double RadiansToDegrees = 57.295779513082320876798154814105;
 } // namespace cbc3d
 

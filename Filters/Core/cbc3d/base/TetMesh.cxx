@@ -35,4 +35,9 @@ Status ValidateTetMesh(const TetMesh& mesh)
   }
   return Status::Ok();
 }
+
+double LongestEdgeOf(const std::vector<Eigen::Vector3d>& points, const Tet& tet)
+{
+  return LongestEdge(points[tet[0]], points[tet[1]], points[tet[2]], points[tet[3]]);
+}
 } // namespace cbc3d

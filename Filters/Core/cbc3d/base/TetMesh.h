@@ -28,6 +28,9 @@ struct TetMesh
   std::vector<std::int32_t> Labels; // one tissue label per tet
 };
 
+/// The longest edge of `tet` with its points at `points`.
+double LongestEdgeOf(const std::vector<Eigen::Vector3d>& points, const Tet& tet);
+
 /// Checks that labels match tets, indices are in range, and every tet has positive volume.
 Status ValidateTetMesh(const TetMesh& mesh);
 } // namespace cbc3d

@@ -79,15 +79,15 @@ class Registration
 public:
   Registration(const TetMesh& mesh, const SurfaceSources& sources, const Matcher& matcher,
     FidelityGuard& fidelity, Eigen::SparseMatrix<double>& stiffness,
-    const DeformationParams& params, double bound, double negligibleMove)
+    const DeformationParams& params, const StepBounds& bounds, double negligibleMove)
     : Mesh(mesh)
     , Sources(sources)
     , Match(matcher)
     , Fidelity(fidelity)
     , Params(params)
-    , Bound(bound)
+    , Bounds(bounds)
     , NegligibleMove(negligibleMove)
-    , Smoothing(mesh.Tets, mesh.Points.size())
+    , Smoothing(mesh.Tets, mesh.Points.size(), bounds.EdgeLimits.empty() ? nullptr : &bounds.EdgeLimits)
     , Reach(mesh.Points.size())
     , Search(mesh.Points.size())
     , Interior(mesh.Points.size(), 1)
@@ -129,7 +129,7 @@ public:
     std::vector<Eigen::Vector3d> trial;
     std::vector<double> share;
     const StepOutcome outcome = GuardedStep(this->Mesh, x,
-      [&](std::size_t p) { return this->Elastic.Displacement(p); }, this->Bound,
+      [&](std::size_t p) { return this->Elastic.Displacement(p); }, this->Bounds,
       this->Params.NumberOfThreads, this->Fidelity, stops.KeepGoing, trial, share);
     if (outcome == StepOutcome::Aborted || stops.Stopped())
     {
@@ -183,7 +183,7 @@ private:
         largestMove = std::max(largestMove, (trial[p] - x[p]).norm());
       }
       if (largestMove < this->NegligibleMove ||
-        !BadTets(this->Mesh, trial, this->Bound, this->Params.NumberOfThreads).empty() ||
+        !BadTets(this->Mesh, trial, this->Bounds, this->Params.NumberOfThreads).empty() ||
         !this->Fidelity.AcceptIfNoneGrows(trial, stops.KeepGoing))
       {
         break;
@@ -279,7 +279,7 @@ private:
   const Matcher& Match;
   FidelityGuard& Fidelity;
   const DeformationParams& Params;
-  const double Bound;          // the angle bound of every step (radians)
+  const StepBounds& Bounds;    // what no step may do to a tet
   const double NegligibleMove; // a rigid fit that moves no point farther ends its loop
   const InteriorSmoothing Smoothing;
   std::vector<double> Reach, Search; // per point: when it is steered, and how far it looks
@@ -387,7 +387,8 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   }
   const int threads = params.NumberOfThreads;
   // The starting mesh must itself satisfy the bound, or no step could ever be checked against it.
-  const double bound = std::min(params.MinimumDihedralAngle / RadiansToDegrees, SmallestAngleMargin(mesh, threads));
+  const StepBounds bounds = MakeStepBounds(mesh,
+    std::min(params.MinimumDihedralAngle / RadiansToDegrees, SmallestAngleMargin(mesh, threads)), params.MaximumEdge);
   StopRequests stops(progress);
   if (stops.Stopped(0.01))
   {
@@ -430,7 +431,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     return Status::Aborted();
   }
   std::vector<Eigen::Vector3d>& x = out.Points;
-  Registration registration(mesh, sources, matcher, fidelity, stiffness, params, bound, NegligibleRigidMove(sources));
+  Registration registration(mesh, sources, matcher, fidelity, stiffness, params, bounds, NegligibleRigidMove(sources));
   if (!RunIterations(registration, params.Iterations, sources.Points.size(), x, stops, result))
   {
     return Status::Aborted();
@@ -439,7 +440,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   {
     // Half a voxel per round at most: the shortfalls left are well under a voxel deep.
     const TissueVolumeKeeper volumes(mesh, faces, TissueImageVolumes(image, threads), 0.5 * image.Spacing.minCoeff());
-    if (RestoreTissueVolumes(volumes, mesh, sources.Points, x, bound, threads, fidelity, stops.KeepGoing) ==
+    if (RestoreTissueVolumes(volumes, mesh, sources.Points, x, bounds, threads, fidelity, stops.KeepGoing) ==
       StepOutcome::Aborted)
     {
       return Status::Aborted();

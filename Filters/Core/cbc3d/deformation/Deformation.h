@@ -7,6 +7,7 @@
 // angle and fidelity guards (GuardedStep.h, FidelityGuard.h), interior smoothing, and the
 // tissues' volumes restored (TissueVolumes.h, VolumeAims.h).
 
+#include "cbc3d/base/EdgeLengthLimits.h"
 #include "cbc3d/base/LabelImage.h"
 #include "cbc3d/base/Progress.h"
 #include "cbc3d/base/Status.h"
@@ -47,6 +48,9 @@ struct DeformationParams
   /// surface inscribed in a thin or curved boundary loses the volume between its faces and the
   /// boundary (the ventricles kept 92.4% of their voxels' volume without this, 100.0% with it).
   bool KeepVolumes = true;
+  /// No step may stretch a tissue tet's edge past its limit (or past its length at the start,
+  /// where that is longer): the limits refinement met hold after deformation.
+  EdgeLengthLimits MaximumEdge;
   /// Materials per tissue label; others get DefaultMaterial.
   std::map<std::int32_t, Material> Materials;
   Material DefaultMaterial;

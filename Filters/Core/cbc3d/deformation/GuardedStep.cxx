@@ -10,9 +10,29 @@
 
 namespace cbc3d
 {
-std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
-  double minimumRadians, int threads, const std::vector<char>* moved)
+StepBounds MakeStepBounds(const TetMesh& mesh, double minimumRadians, const EdgeLengthLimits& limits)
 {
+  StepBounds bounds;
+  bounds.MinimumRadians = minimumRadians;
+  if (!limits.Any())
+  {
+    return bounds;
+  }
+  bounds.EdgeLimits.assign(mesh.Tets.size(), 0.0);
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    const double limit = limits.Of(mesh.Labels[t]);
+    if (limit > 0.0)
+      bounds.EdgeLimits[t] = std::max(limit, LongestEdgeOf(mesh.Points, mesh.Tets[t]));
+  }
+  return bounds;
+}
+
+std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
+  const StepBounds& bounds, int threads, const std::vector<char>* moved)
+{
+  const double minimumRadians = bounds.MinimumRadians;
+  const bool edgeLimits = !bounds.EdgeLimits.empty();
   const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
   std::vector<char> bad(count, 0);
   const double largestCosine = std::cos(minimumRadians); // DihedralAnglesWithin's test, its cosine once
@@ -30,7 +50,8 @@ std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::
       bad[t] = 1;
       continue;
     }
-    bad[t] = !(LargestDihedralCosine(x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]) <= largestCosine);
+    bad[t] = !(LargestDihedralCosine(x[tet[0]], x[tet[1]], x[tet[2]], x[tet[3]]) <= largestCosine) ||
+      (edgeLimits && bounds.EdgeLimits[t] > 0.0 && LongestEdgeOf(x, tet) > bounds.EdgeLimits[t]);
   }
   std::vector<std::int64_t> result;
   for (std::int64_t t = 0; t < count; ++t)
@@ -44,7 +65,7 @@ std::vector<std::int64_t> BadTets(const TetMesh& mesh, const std::vector<Eigen::
 }
 
 StepOutcome GuardedStep(const TetMesh& mesh, const std::vector<Eigen::Vector3d>& x,
-  const std::function<Eigen::Vector3d(std::size_t)>& step, double bound, int threads,
+  const std::function<Eigen::Vector3d(std::size_t)>& step, const StepBounds& bounds, int threads,
   FidelityGuard& fidelity, const std::function<bool()>& keepGoing,
   std::vector<Eigen::Vector3d>& trial, std::vector<double>& share)
 {
@@ -67,7 +88,7 @@ StepOutcome GuardedStep(const TetMesh& mesh, const std::vector<Eigen::Vector3d>&
       moved[p] = spoilt[p] || next != (round == 0 ? x[p] : trial[p]);
       trial[p] = next;
     }
-    const std::vector<std::int64_t> bad = BadTets(mesh, trial, bound, threads, &moved);
+    const std::vector<std::int64_t> bad = BadTets(mesh, trial, bounds, threads, &moved);
     if (bad.empty())
     {
       if (fidelity.Hold(trial, share, keepGoing) == 0)
@@ -104,7 +125,7 @@ constexpr double VolumeTolerance = 1e-3;
 } // namespace
 
 StepOutcome RestoreTissueVolumes(const TissueVolumeKeeper& volumes, const TetMesh& mesh,
-  const std::vector<PointId>& surface, std::vector<Eigen::Vector3d>& x, double bound, int threads,
+  const std::vector<PointId>& surface, std::vector<Eigen::Vector3d>& x, const StepBounds& bounds, int threads,
   FidelityGuard& fidelity, const std::function<bool()>& keepGoing)
 {
   std::map<std::int32_t, double> now = volumes.Volumes(x); // measured once a round
@@ -128,7 +149,7 @@ StepOutcome RestoreTissueVolumes(const TissueVolumeKeeper& volumes, const TetMes
     std::vector<Eigen::Vector3d> goals = x;
     volumes.OffsetGoals(goals, sums, now, aimed, threads);
     const StepOutcome outcome = GuardedStep(mesh, x, [&](std::size_t p) { return Eigen::Vector3d(goals[p] - x[p]); },
-      bound, threads, fidelity, keepGoing, trial, share);
+      bounds, threads, fidelity, keepGoing, trial, share);
     if (outcome != StepOutcome::Made)
     {
       return outcome;

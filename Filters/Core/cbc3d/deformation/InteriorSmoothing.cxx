@@ -7,10 +7,24 @@
 
 namespace cbc3d
 {
-InteriorSmoothing::InteriorSmoothing(const std::vector<Tet>& tets, std::size_t pointCount)
+InteriorSmoothing::InteriorSmoothing(const std::vector<Tet>& tets, std::size_t pointCount,
+  const std::vector<double>* edgeLimits)
   : Tets(tets)
+  , EdgeLimits(edgeLimits)
   , Around(tets, pointCount)
 {
+}
+
+bool InteriorSmoothing::WithinEdgeLimits(PointId p, const std::vector<Eigen::Vector3d>& x) const
+{
+  for (std::int64_t i = this->Around.Start[p]; i < this->Around.Start[p + 1]; ++i)
+  {
+    const std::int64_t t = this->Around.Tets[i];
+    const double limit = (*this->EdgeLimits)[t];
+    if (limit > 0.0 && LongestEdgeOf(x, this->Tets[t]) > limit)
+      return false;
+  }
+  return true;
 }
 
 namespace
@@ -81,7 +95,8 @@ bool InteriorSmoothing::TryMove(
   trial.clear();
   for (std::int64_t i = begin; i < end && (trial.empty() || trial.back() < before); ++i)
     trial.push_back(Badness(x, this->Tets[this->Around.Tets[i]]));
-  if (trial.size() == std::size_t(end - begin) && trial.back() < before)
+  if (trial.size() == std::size_t(end - begin) && trial.back() < before &&
+    (!this->EdgeLimits || this->WithinEdgeLimits(p, x)))
   {
     for (std::int64_t i = begin; i < end; ++i)
       badness[this->Around.Tets[i]] = trial[i - begin];

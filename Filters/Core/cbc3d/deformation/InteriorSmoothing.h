@@ -19,7 +19,9 @@ namespace cbc3d
 class InteriorSmoothing
 {
 public:
-  explicit InteriorSmoothing(const std::vector<Tet>& tets, std::size_t pointCount);
+  /// `edgeLimits` (one per tet, mm; 0 = none), where given: no move makes a tet's edge longer.
+  InteriorSmoothing(const std::vector<Tet>& tets, std::size_t pointCount,
+    const std::vector<double>* edgeLimits = nullptr);
 
   /// Sweeps over the movable points in point order (a Gauss-Seidel sweep: each move sees the
   /// moves before it), until a sweep moves none or `sweeps` are done. Returns how many moves it
@@ -40,8 +42,11 @@ private:
   /// tets' `badness` up to date. `trial`: scratch.
   bool TryMove(PointId p, std::vector<Eigen::Vector3d>& x, std::vector<double>& badness,
     std::vector<double>& trial) const;
+  /// Whether the tets around p keep their edge limits.
+  bool WithinEdgeLimits(PointId p, const std::vector<Eigen::Vector3d>& x) const;
 
   const std::vector<Tet>& Tets;
+  const std::vector<double>* EdgeLimits;
   PointTets Around; // the tets around each point
 };
 } // namespace cbc3d

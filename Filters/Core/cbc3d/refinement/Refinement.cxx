@@ -6,6 +6,7 @@
 #include "cbc3d/base/Parallel.h"
 #include "cbc3d/lattice/RedGreenMesh.h"
 #include "cbc3d/refinement/BoundaryCoverage.h"
+#include "cbc3d/refinement/EdgeLimits.h"
 #include "cbc3d/refinement/KeptComponents.h"
 #include "cbc3d/refinement/LabelledMesh.h"
 #include "cbc3d/refinement/SurfaceEars.h"
@@ -21,12 +22,16 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 
 namespace cbc3d
 {
 namespace
 {
+
+// Rounds of refining again where the sound labels left tets beyond an edge limit.
+constexpr int EdgeLimitRounds = 3;
 
 // Bytes per tet at peak: the hierarchy, the final tets, their samples and the VTK output.
 constexpr double BytesPerTet = 400.0;
@@ -43,6 +48,24 @@ Status ValidateInputs(const LabelImage& image, const TetMesh& lattice, const Ref
   {
     return Status::Error("the fidelity must be a number from 0 to 1");
   }
+  for (const auto& [label, fidelity] : params.FidelityByTissue)
+  {
+    if (!image.IsTissue(label))
+      return Status::Error("label " + std::to_string(label) + " is background, not a tissue: it has no fidelity");
+    if (!(fidelity >= 0.0 && fidelity <= 1.0))
+      return Status::Error("the fidelity of tissue " + std::to_string(label) + " must be a number from 0 to 1");
+  }
+  if (!(params.MaximumEdge.All >= 0.0) || !std::isfinite(params.MaximumEdge.All))
+  {
+    return Status::Error("the maximum edge length must be 0 (none) or a positive length in mm");
+  }
+  for (const auto& [label, length] : params.MaximumEdge.ByTissue)
+  {
+    if (!image.IsTissue(label))
+      return Status::Error("label " + std::to_string(label) + " is background, not a tissue: it has no edge limit");
+    if (!(length > 0.0) || !std::isfinite(length))
+      return Status::Error("the maximum edge length of tissue " + std::to_string(label) + " must be a positive length in mm");
+  }
   if (!(params.MinimumEdgeLength >= 0.0) || !std::isfinite(params.MinimumEdgeLength))
   {
     return Status::Error("the minimum edge length must be 0 (automatic) or a positive length in mm");
@@ -56,6 +79,21 @@ Status ValidateInputs(const LabelImage& image, const TetMesh& lattice, const Ref
   {
     return Status::Error("the mesh to refine has no tets");
   }
+  return CheckEdgeLimitsAboveFloor(params);
+}
+
+// A per-tissue target for a label with no voxel in the image is a mistake worth naming.
+Status CheckTissuesPresent(const TissueComponents& components, const RefinementParams& params)
+{
+  const std::set<std::int32_t> present(components.Label.begin(), components.Label.end());
+  for (const auto* targets : { &params.FidelityByTissue, &params.MaximumEdge.ByTissue })
+  {
+    for (const auto& entry : *targets)
+    {
+      if (!present.count(entry.first))
+        return Status::Error("the image has no voxel of tissue " + std::to_string(entry.first));
+    }
+  }
   return Status::Ok();
 }
 
@@ -68,8 +106,8 @@ std::vector<char> MarkForFidelity(const LabelImage& image, const TissueComponent
 {
   auto isFailing = [&](std::int32_t label) {
     const auto found = fidelity.find(label);
-    return found != fidelity.end() &&
-      (found->second.F1 < params.Fidelity || found->second.F2 < params.Fidelity);
+    const double target = params.FidelityOf(label);
+    return found != fidelity.end() && (found->second.F1 < target || found->second.F2 < target);
   };
   std::vector<char> marked(leaves, 0);
   for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
@@ -263,9 +301,17 @@ std::string StopReason(const PassesEnd& passes, bool coverage, const CoveragePro
   return reason.str();
 }
 
-// Unmarks the marked leaves at the depth limit (a split would make edges shorter than
-// `minimumEdge`) and counts the rest; `anyWanted` becomes true where any leaf was marked.
-std::size_t KeepSplittable(const RedGreenMesh& hierarchy, double minimumEdge, std::vector<char>& marked,
+struct PassLimits
+{
+  double MinimumEdge;   // the floor of splits for fidelity and the boundary distance
+  double EdgeLimitFloor; // the floor of splits for an edge limit: the user's, else none
+  std::size_t MemoryBytes;
+};
+
+// Unmarks the marked leaves at the depth limit (a split would make edges shorter than the floor:
+// limits.EdgeLimitFloor for leaves marked for an edge limit, else limits.MinimumEdge) and counts
+// the rest; `anyWanted` becomes true where any leaf was marked.
+std::size_t KeepSplittable(const RedGreenMesh& hierarchy, const PassLimits& limits, std::vector<char>& marked,
   bool& anyWanted)
 {
   std::size_t splits = 0;
@@ -276,17 +322,14 @@ std::size_t KeepSplittable(const RedGreenMesh& hierarchy, double minimumEdge, st
       continue;
     }
     anyWanted = true;
-    marked[red] = hierarchy.ShortestEdge(red) / 2.0 >= minimumEdge * (1.0 - 1e-9);
+    const double floor = marked[red] == MarkedForEdgeLimit ? limits.EdgeLimitFloor : limits.MinimumEdge;
+    marked[red] = hierarchy.ShortestEdge(red) / 2.0 >= floor * (1.0 - 1e-9);
     splits += marked[red];
   }
   return splits;
 }
 // How small a tet may get, and how much memory the mesh may take.
-struct PassLimits
-{
-  double MinimumEdge;
-  std::size_t MemoryBytes;
-};
+
 
 // Marks the reds that fidelity or coverage wants split (and that may be) and the edges coverage
 // bisects, and splits them; false, with how the passes ended in `end`, when there is nothing
@@ -298,11 +341,12 @@ bool SplitOnePass(const LabelImage& image, const TissueComponents& components, c
 {
   std::vector<char> marked = MarkForFidelity(image, components, params, mesh, fidelity, componentInMesh,
     hierarchy.Reds().size());
+  MarkForMaximumEdge(image, params, hierarchy, mesh, marked);
   std::vector<std::pair<PointId, PointId>> bisect;
   const bool coverageWanted = coverage && !progress.Stalled &&
     MarkForCoverage(*coverage, distance, hierarchy, mesh, limits.MinimumEdge, progress, marked, bisect);
   bool anyWanted = coverageWanted;
-  const std::size_t splits = KeepSplittable(hierarchy, limits.MinimumEdge, marked, anyWanted);
+  const std::size_t splits = KeepSplittable(hierarchy, limits, marked, anyWanted);
   if (splits == 0 && bisect.empty())
   {
     end.End = anyWanted ? PassesEnd::AtMinimumEdge : PassesEnd::TargetsReached;
@@ -331,6 +375,14 @@ bool SplitOnePass(const LabelImage& image, const TissueComponents& components, c
 }
 } // namespace
 
+bool RefinementParams::AsksForRefinement() const
+{
+  const auto positive = [](const std::map<std::int32_t, double>& values) {
+    return std::any_of(values.begin(), values.end(), [](const auto& entry) { return entry.second > 0.0; });
+  };
+  return this->Fidelity > 0.0 || positive(this->FidelityByTissue) || this->MaximumEdge.Any();
+}
+
 Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params,
   TetMesh& out, RefinementResult& result, const Progress& progress)
 {
@@ -347,6 +399,11 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
     params.MemoryLimitBytes > 0 ? params.MemoryLimitBytes : PhysicalMemoryBytes() / 2;
 
   const TissueComponents components = FindTissueComponents(image);
+  const Status present = CheckTissuesPresent(components, params);
+  if (!present.IsOk())
+  {
+    return present;
+  }
   // Sound labels need background on both sides of a thin sheet of tissue to thicken it into.
   TetMesh ringed = lattice;
   if (params.SoundLabels)
@@ -361,44 +418,57 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   const int expectedPasses = 2 + static_cast<int>(std::ceil(std::log2(
     std::max(1.0, hierarchy.ShortestEdge(0) / minimumEdge))));
 
-  for (int pass = 0;; ++pass)
+  for (int round = 0;; ++round)
   {
-    const double done = std::min(0.95, double(pass + 1) / double(expectedPasses + 1));
-    const std::function<bool()> keepGoing = [&] { return KeepGoing(progress, done); };
-    if (!hierarchy.Close(keepGoing) || !SampleAll(image, hierarchy, params.NumberOfThreads, mesh, keepGoing))
+    for (int pass = 0;; ++pass)
     {
-      return Status::Aborted();
+      const double done = std::min(0.95, double(pass + 1) / double(expectedPasses + 1));
+      const std::function<bool()> keepGoing = [&] { return KeepGoing(progress, done); };
+      if (!hierarchy.Close(keepGoing) || !SampleAll(image, hierarchy, params.NumberOfThreads, mesh, keepGoing))
+      {
+        return Status::Aborted();
+      }
+      fidelity = MeasureFidelity(
+        image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
+      if (!params.AsksForRefinement())
+      {
+        passesEnd.End = PassesEnd::NoRefinementAsked;
+        break;
+      }
+
+      if (!SplitOnePass(image, components, params, coverage.get(), result.BoundaryDistance,
+            PassLimits{ minimumEdge, params.MinimumEdgeLength, memoryLimit }, fidelity, componentInMesh, mesh, hierarchy, coverageProgress,
+            passesEnd))
+      {
+        break;
+      }
+      ++result.Passes;
     }
-    fidelity = MeasureFidelity(
-      image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
-    if (params.Fidelity == 0.0)
+
+    ResolveOwners(mesh, params.NumberOfThreads);
+    // Spikes on the surface would keep their tips off the image boundary through deformation.
+    const auto across = FaceNeighbours(mesh.Tets, hierarchy.Points().size(), params.NumberOfThreads);
+    if (RemoveSurfaceEars(mesh.Tets, across, hierarchy.Points().size(), mesh.Labels,
+          [&](std::int32_t label) { return label != NoLabel && image.IsTissue(label); }, NoLabel) > 0)
     {
-      passesEnd.End = PassesEnd::NoRefinementAsked;
+      fidelity = MeasureFidelity(
+        image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
+    }
+
+    fidelity = KeepComponentsAndMakeSound(image, components, params, hierarchy.Points(), across, mesh, componentInMesh,
+      result.Relabelled);
+
+    result.OverlongTets = CountOverlongEdges(hierarchy.Points(), mesh.Tets, mesh.Labels, image, params,
+      result.LargestEdgeExcess);
+    // Tets that making the labels sound gave to a tissue may pass its edge limit: split them and
+    // refine again, from a fresh sampling (the owners are renumbered by now).
+    if (result.OverlongTets == 0 || round == EdgeLimitRounds ||
+      !SplitOverlongTets(image, params, hierarchy, mesh))
+    {
       break;
     }
-
-    if (!SplitOnePass(image, components, params, coverage.get(), result.BoundaryDistance,
-          PassLimits{ minimumEdge, memoryLimit }, fidelity, componentInMesh, mesh, hierarchy, coverageProgress,
-          passesEnd))
-    {
-      break;
-    }
-    ++result.Passes;
+    mesh = LabelledMesh();
   }
-
-  ResolveOwners(mesh, params.NumberOfThreads);
-  // Spikes on the surface would keep their tips off the image boundary through deformation.
-  const auto across = FaceNeighbours(mesh.Tets, hierarchy.Points().size(), params.NumberOfThreads);
-  if (RemoveSurfaceEars(mesh.Tets, across, hierarchy.Points().size(), mesh.Labels,
-        [&](std::int32_t label) { return label != NoLabel && image.IsTissue(label); }, NoLabel) > 0)
-  {
-    fidelity = MeasureFidelity(
-      image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
-  }
-
-  fidelity = KeepComponentsAndMakeSound(image, components, params, hierarchy.Points(), across, mesh, componentInMesh,
-    result.Relabelled);
-
   KeepTissueTets(image, hierarchy, mesh, out, result);
   for (const auto& entry : fidelity)
   {
@@ -406,7 +476,7 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   }
   result.LargestBoundaryGap = coverageProgress.LargestGap;
   const bool belowTarget = std::any_of(result.Tissues.begin(), result.Tissues.end(),
-    [&](const TissueFidelity& t) { return t.F1 < params.Fidelity || t.F2 < params.Fidelity; });
+    [&](const TissueFidelity& t) { return t.F1 < params.FidelityOf(t.Label) || t.F2 < params.FidelityOf(t.Label); });
   result.StopReason = StopReason(passesEnd, coverage != nullptr, coverageProgress, belowTarget);
   if (out.Tets.empty())
   {

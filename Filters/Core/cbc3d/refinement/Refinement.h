@@ -7,12 +7,14 @@
 // voxels (LabelledMesh.h), then keeps the tissues' components and makes the labels sound
 // (KeptComponents.h).
 
+#include "cbc3d/base/EdgeLengthLimits.h"
 #include "cbc3d/base/LabelImage.h"
 #include "cbc3d/base/Progress.h"
 #include "cbc3d/base/Status.h"
 #include "cbc3d/base/TetMesh.h"
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -22,9 +24,13 @@ struct RefinementParams
 {
   /// Target F in [0, 1] for both voxel ratios F1 and F2 of every tissue (the paper's F).
   double Fidelity = 0.95;
+  /// Targets of single tissues (label -> F in [0, 1]), in place of Fidelity for those tissues.
+  std::map<std::int32_t, double> FidelityByTissue;
+  /// No tet of a tissue keeps an edge longer than its limit at the end of refinement.
+  EdgeLengthLimits MaximumEdge;
   /// The depth limit: a red split must leave edges at least this long (mm); 0 = the voxel
   /// size, the cube root of the voxel volume (so refinement stops when the finest edges reach
-  /// the voxels, whatever their aspect).
+  /// the voxels, whatever their aspect). Splits for an edge limit obey only a floor given here.
   double MinimumEdgeLength = 0.0;
   /// Every 6-connected component of a tissue with at least this many voxels keeps tets of
   /// that tissue (thin vessels are refined towards, or kept by relabelling, never eroded).
@@ -44,6 +50,15 @@ struct RefinementParams
   int NumberOfThreads = 0;
   /// Stop refining before the mesh would need more memory than this (bytes); 0 = half the machine.
   std::size_t MemoryLimitBytes = 0;
+
+  /// The fidelity target of a tissue.
+  double FidelityOf(std::int32_t label) const
+  {
+    const auto found = this->FidelityByTissue.find(label);
+    return found == this->FidelityByTissue.end() ? this->Fidelity : found->second;
+  }
+  /// Whether any target asks for refinement: a fidelity above 0 or an edge limit.
+  bool AsksForRefinement() const;
 };
 
 /// The voxel fidelity of one tissue: S1 = voxels in the tets labelled with it, S2 = its voxels,
@@ -68,6 +83,8 @@ struct RefinementResult
   std::int64_t Relabelled = 0;         // tets relabelled for a sound mesh (see SoundLabels.h)
   std::vector<std::uint8_t> Levels;    // red level of every output tet
   std::string StopReason;              // why refinement ended, in words
+  std::size_t OverlongTets = 0;        // tissue tets with an edge beyond their limit (mm)
+  double LargestEdgeExcess = 0.0;      // the most such an edge passes its limit by (mm)
 };
 
 /// Red-green refinement of a tet mesh (normally the BCC lattice) driven by voxel fidelity
