@@ -187,8 +187,9 @@ bool vtkCBC3DAlgorithm::ReadEdgeLimits(const cbc3d::LabelImage& image, cbc3d::Ed
   return true;
 }
 
-void vtkCBC3DAlgorithm::CopyEdgeLimitsTo(vtkCBC3DAlgorithm* stage) const
+void vtkCBC3DAlgorithm::CopySizeControlsTo(vtkCBC3DAlgorithm* stage) const
 {
+  stage->SetMaximumNumberOfTets(this->MaximumNumberOfTets);
   stage->SetMaximumEdgeLength(this->MaximumEdgeLength);
   stage->RemoveAllTissueMaximumEdgeLengths();
   for (const auto& [label, length] : this->TissueMaximumEdgeLength)
@@ -214,4 +215,5 @@ void vtkCBC3DAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
   for (const auto& [label, length] : this->TissueMaximumEdgeLength)
     os << ", tissue " << label << ": " << length << " mm";
   os << "\n";
+  os << indent << "MaximumNumberOfTets: " << this->MaximumNumberOfTets << "\n";
 }

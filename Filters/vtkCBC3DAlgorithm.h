@@ -74,6 +74,16 @@ public:
 
   ///@{
   /**
+   * A tet budget (0, the default: none), for the lattice (whose automatic size grows so that it
+   * holds at most about a quarter of it), refinement (which keeps the splits that fit, those that
+   * gain the most fidelity first) and the one-shot Mesher.
+   */
+  vtkSetClampMacro(MaximumNumberOfTets, vtkIdType, 0, VTK_ID_MAX);
+  vtkGetMacro(MaximumNumberOfTets, vtkIdType);
+  ///@}
+
+  ///@{
+  /**
    * The label image, for filters that take a mesh on port 0 and the image on port 1.
    */
   void SetImageConnection(vtkAlgorithmOutput* output);
@@ -131,8 +141,8 @@ protected:
   /// The edge limits by the image's label codes; false, with vtkErrorMacro, for a label the
   /// image lacks or a background label.
   bool ReadEdgeLimits(const cbc3d::LabelImage& image, cbc3d::EdgeLengthLimits& limits);
-  /// Gives `stage` this filter's edge limits.
-  void CopyEdgeLimitsTo(vtkCBC3DAlgorithm* stage) const;
+  /// Gives `stage` this filter's edge limits and tet budget.
+  void CopySizeControlsTo(vtkCBC3DAlgorithm* stage) const;
   /// Whether any edge limit is set.
   bool HasEdgeLimits() const;
 
@@ -140,6 +150,7 @@ protected:
   int NumberOfThreads = 0;
   double MaximumEdgeLength = 0.0;
   std::map<long long, double> TissueMaximumEdgeLength; // label value -> mm
+  vtkIdType MaximumNumberOfTets = 0;
 
 private:
   vtkCBC3DAlgorithm(const vtkCBC3DAlgorithm&) = delete;

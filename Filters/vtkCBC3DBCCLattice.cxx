@@ -27,6 +27,7 @@ int vtkCBC3DBCCLattice::RequestData(
   cbc3d::LatticeParams params;
   params.EdgeLength = this->EdgeLength;
   params.NumberOfThreads = this->NumberOfThreads;
+  params.MaximumTets = this->MaximumNumberOfTets;
   cbc3d::TetMesh mesh;
   const cbc3d::Status status =
     cbc3d::BuildBCCLattice(*image, params, mesh, vtkCBC3DConvert::MakeProgress(this));
@@ -37,7 +38,7 @@ int vtkCBC3DBCCLattice::RequestData(
   vtkCBC3DConvert::ToUnstructuredGrid(mesh, image->Codes, output);
   vtkNew<vtkDoubleArray> edge;
   edge->SetName(vtkCBC3DArrayNames::LatticeEdgeLength);
-  edge->InsertNextValue(params.EdgeLength > 0 ? params.EdgeLength : cbc3d::DefaultLatticeEdgeLength(*image));
+  edge->InsertNextValue(cbc3d::LatticeEdgeLengthFor(*image, params));
   output->GetFieldData()->AddArray(edge);
   return 1;
 }

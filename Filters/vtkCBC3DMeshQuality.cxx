@@ -148,6 +148,9 @@ struct TissueRow
   cbc3d::DihedralSummary Angles;
   cbc3d::SurfaceDistanceSummary Distances = { NaN, NaN, NaN, NaN, NaN };
   std::size_t DistanceCount = 0; // points behind the mean
+  // The directed distances themselves: the whole mesh's 95th percentile is taken over every
+  // tissue's samples, not the largest of the tissues' percentiles.
+  std::vector<double> MeshToImage, ImageToMesh;
 };
 
 // The two-sided distances between a tissue's surface vertices and its boundary voxel centres
@@ -166,6 +169,23 @@ void MeasureDistances(const cbc3d::TetMesh& mesh, const std::vector<cbc3d::Point
   std::vector<double> imageToMesh = NearestDistances(boundary, meshGrid, meshPoints, threads);
   row.DistanceCount = meshToImage.size() + imageToMesh.size();
   row.Distances = cbc3d::SummarizeSurfaceDistances(meshToImage, imageToMesh);
+  row.MeshToImage = std::move(meshToImage);
+  row.ImageToMesh = std::move(imageToMesh);
+}
+
+// The 95th percentile of every tissue's surface samples together (the Hausdorff measure's
+// summary for the whole mesh); NaN where a tissue lies on one side only.
+double PooledPercentile95(const std::vector<TissueRow>& rows)
+{
+  std::vector<const std::vector<double>*> meshToImage, imageToMesh;
+  for (const TissueRow& row : rows)
+  {
+    if (std::isnan(row.Distances.Percentile95))
+      return NaN;
+    meshToImage.push_back(&row.MeshToImage);
+    imageToMesh.push_back(&row.ImageToMesh);
+  }
+  return rows.empty() ? NaN : cbc3d::SummarizeSurfaceDistancesTogether(meshToImage, imageToMesh).Percentile95;
 }
 
 // The whole mesh's counts and angle extremes.
@@ -197,7 +217,7 @@ void AddTissueFields(vtkFieldData* fields, const std::vector<TissueRow>& rows,
   std::vector<std::int32_t> labels;
   std::vector<vtkIdType> tets, inverted, small, large;
   std::vector<double> minima, maxima, hausdorff, meshToImage, imageToMesh, hausdorff95, mean, volume, imageVolume;
-  double meshHausdorff = rows.empty() ? NaN : 0.0, meshHausdorff95 = meshHausdorff;
+  double meshHausdorff = rows.empty() ? NaN : 0.0;
   double distanceSum = 0.0;
   std::size_t distanceCount = 0;
   for (const TissueRow& row : rows)
@@ -219,7 +239,6 @@ void AddTissueFields(vtkFieldData* fields, const std::vector<TissueRow>& rows,
     mean.push_back(d.Mean);
     // NaN (a tissue on one side only) must win over any finite distance.
     meshHausdorff = std::isnan(d.Hausdorff) ? NaN : std::max(meshHausdorff, d.Hausdorff);
-    meshHausdorff95 = std::isnan(d.Percentile95) ? NaN : std::max(meshHausdorff95, d.Percentile95);
     distanceSum += std::isnan(d.Mean) ? NaN : d.Mean * static_cast<double>(row.DistanceCount);
     distanceCount += row.DistanceCount;
   }
@@ -235,7 +254,7 @@ void AddTissueFields(vtkFieldData* fields, const std::vector<TissueRow>& rows,
   {
     AddFieldArray<vtkDoubleArray>(fields, names::TissueImageVolume, imageVolume);
     AddFieldArray<vtkDoubleArray>(fields, names::HausdorffDistance, std::vector<double>{ meshHausdorff });
-    AddFieldArray<vtkDoubleArray>(fields, names::HausdorffDistance95, std::vector<double>{ meshHausdorff95 });
+    AddFieldArray<vtkDoubleArray>(fields, names::HausdorffDistance95, std::vector<double>{ PooledPercentile95(rows) });
     AddFieldArray<vtkDoubleArray>(fields, names::MeanSurfaceDistance,
       std::vector<double>{ distanceCount ? distanceSum / double(distanceCount) : NaN });
     AddFieldArray<vtkDoubleArray>(fields, names::TissueHausdorffDistance, hausdorff);

@@ -21,8 +21,8 @@
  * - field data over the whole mesh (one value each): `TetCount`, `InvertedTetCount`,
  *   `SmallAngleTetCount` (tets with an angle under 10 degrees), `LargeAngleTetCount` (over 170
  *   degrees) (vtkIdTypeArray); `MinDihedralAngle`, `MaxDihedralAngle` (vtkDoubleArray, degrees);
- *   with the image, `HausdorffDistance` (the maximum over tissues), `HausdorffDistance95` (the
- *   maximum over tissues) and `MeanSurfaceDistance` (over all tissues' points) (mm);
+ *   with the image, `HausdorffDistance` (the maximum over tissues), `HausdorffDistance95` and
+ *   `MeanSurfaceDistance` (over all tissues' surface samples together) (mm);
  * - field data per tissue, one value per tissue in ascending label order: `TissueLabel`
  *   (vtkIntArray), `TissueTetCount`, `TissueInvertedTetCount`, `TissueSmallAngleTetCount`,
  *   `TissueLargeAngleTetCount`, `TissueMinDihedralAngle`, `TissueMaxDihedralAngle`,

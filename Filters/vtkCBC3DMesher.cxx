@@ -68,8 +68,9 @@ int vtkCBC3DMesher::RequestData(
   refinement->SetFidelity(this->Fidelity);
   refinement->SetBoundaryDistance(this->BoundaryDistance);
   refinement->SetMinimumEdgeLength(this->MinimumEdgeLength);
-  this->CopyEdgeLimitsTo(refinement);
-  this->CopyEdgeLimitsTo(deformation);
+  this->CopySizeControlsTo(lattice);
+  this->CopySizeControlsTo(refinement);
+  this->CopySizeControlsTo(deformation);
   bool refine = this->Fidelity > 0.0 || this->HasEdgeLimits();
   for (const auto& [label, fidelity] : this->TissueFidelity)
   {

@@ -45,6 +45,7 @@ int vtkCBC3DRefinement::RequestData(
   params.BoundaryDistance = this->BoundaryDistance;
   params.SoundLabels = this->SoundLabels;
   params.NumberOfThreads = this->NumberOfThreads;
+  params.MaximumTets = this->MaximumNumberOfTets;
   std::string error;
   if (!vtkCBC3DConvert::ToTissueCodes(this->TissueFidelity, *image, params.FidelityByTissue, error))
   {

@@ -26,7 +26,7 @@ std::string UsageText()
 {
   return R"(usage: cbc3d INPUT -o OUTPUT [-o OUTPUT]... [--msh-version 4.1|2.2] [--surfaces FILE]
              [--bcc-size MM] [--fidelity [L=]F]... [--boundary-distance MM]
-             [--max-edge [L=]MM]... [--min-edge MM]
+             [--max-tets N] [--max-edge [L=]MM]... [--min-edge MM]
              [--pattern vertex|edge|face|none] [--targets centre|face]
              [--keep-volumes on|off]
              [--iterations N] [--background L]...
@@ -54,6 +54,9 @@ Mesh a 3-D label image into a conforming multi-tissue tetrahedral mesh (CBC3D).
   --fidelity [L=]F    voxel fidelity target in [0, 1] for refinement (default 0.95;
                       0 = no refinement); L=F sets it for tissue L alone (repeat for
                       several)
+  --max-tets N        at most N tets: refinement spends them where they gain the
+                      most fidelity, and the automatic lattice grows coarser where
+                      it alone would hold more than a quarter of N
   --max-edge [L=]MM   no tet of a tissue keeps an edge longer than MM at the end of
                       refinement (default: no limit); L=MM for tissue L alone (repeat
                       for several). Tets near a tissue with a limit are refined too
@@ -252,6 +255,9 @@ const std::map<std::string, SetValue>& ValueOptions()
     { "--max-edge", [](const std::string& t, Parsing& p, std::string& e) {
        return SetPerTissue(t, p.Options.MaxEdge, p.Options.TissueMaxEdge, [](double mm) { return mm > 0.0; }) ||
          Refuse("--max-edge", "a positive number of millimetres, or LABEL=MM", t, e); } },
+    { "--max-tets", [](const std::string& t, Parsing& p, std::string& e) {
+       return (ParseLabel(t, p.Options.MaxTets) && p.Options.MaxTets > 0) ||
+         Refuse("--max-tets", "a positive whole number of tets", t, e); } },
     { "--min-edge", [](const std::string& t, Parsing& p, std::string& e) {
        return (ParseDouble(t, p.Options.MinEdge) && p.Options.MinEdge > 0.0) ||
          Refuse("--min-edge", "a positive number of millimetres", t, e); } },

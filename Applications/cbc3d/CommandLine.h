@@ -19,6 +19,7 @@ struct CommandLineOptions
   double MaxEdge = 0.0;    // mm; 0 = no limit
   std::map<long long, double> TissueMaxEdge;  // --max-edge LABEL=MM
   double MinEdge = 0.0;    // mm; 0 = the voxel size
+  long long MaxTets = 0;   // a tet budget; 0 = none
   double BoundaryDistance = 0.0; // mm; 0 = 3/8 of the lattice size, negative = none
   std::string Pattern = "edge";
   std::string Targets = "face";   // where deformation targets sit: centre or face

@@ -324,7 +324,7 @@ std::string FormatJson(const RunReport& report)
     { "boundary_distance_mm", o.BoundaryDistance },
     { "pattern", o.Pattern }, { "targets", o.Targets }, { "keep_volumes", o.KeepVolumes }, { "iterations", o.Iterations },
     { "background", o.BackgroundLabels }, { "threads", o.Threads }, { "max_edge_mm", o.MaxEdge },
-    { "min_edge_mm", o.MinEdge } };
+    { "min_edge_mm", o.MinEdge }, { "max_tets", o.MaxTets } };
   for (const auto& [key, values] : { std::make_pair("tissue_fidelity", &o.TissueFidelity),
          std::make_pair("tissue_max_edge_mm", &o.TissueMaxEdge) })
   {

@@ -196,9 +196,12 @@ struct MeshingStages
 // 0), deformation (iterations above 0), and the quality filter on the last of them.
 void ConfigureStages(MeshingStages& stages, vtkImageData* image, const CommandLineOptions& options)
 {
-  // Refinement splits to the edge limits; deformation stretches no edge past them.
-  for (vtkCBC3DAlgorithm* stage : std::initializer_list<vtkCBC3DAlgorithm*>{ stages.Refinement, stages.Deformation })
+  // The lattice and refinement keep the budget; refinement splits to the edge limits and
+  // deformation stretches no edge past them.
+  for (vtkCBC3DAlgorithm* stage :
+    std::initializer_list<vtkCBC3DAlgorithm*>{ stages.Lattice, stages.Refinement, stages.Deformation })
   {
+    stage->SetMaximumNumberOfTets(options.MaxTets);
     stage->SetMaximumEdgeLength(options.MaxEdge);
     for (const auto& [label, length] : options.TissueMaxEdge)
       stage->SetTissueMaximumEdgeLength(static_cast<double>(label), length);

@@ -1,7 +1,8 @@
 """--max-edge [LABEL=]MM, --min-edge MM and --fidelity LABEL=F do what they say: every edge of
 the mesh is measured here, in the Medit file the command writes, against the limits; a run
 without the options shows that the limits are what made the difference. With the shared data,
-the 3 mm head (nipype) at defaults with --max-edge 3=4 --max-edge 8, deformation included."""
+the 3 mm head (nipype) at defaults with --max-edge 3=4 --max-edge 8, deformation included, and
+--max-tets on the 3 mm head, the k-means head and the New York Head."""
 import json
 import math
 import os
@@ -98,7 +99,26 @@ with tempfile.TemporaryDirectory() as work:
         for label in (1, 2):
             check(sized.get(label, (0, 99))[1] <= 8.0 + 1e-6,
                   "nipype tissue %d: every edge at most 8 mm: %s" % (label, sized.get(label)))
+        # Tet budgets: within [0.9 N, N], every tissue within 3% of its voxels' volume, angles
+        # in [20, 160] degrees, and the report says the budget stopped refinement.
+        for image, budget, extra in (("nipype-tissue-labels.nii.gz", 20000, []),
+                                     ("nipype-tissue-labels.nii.gz", 50000, []),
+                                     ("nipype-tissue-labels.nii.gz", 100000, []),
+                                     ("itk-t1-kmeans-labels.nii.gz", 100000, ["--background", "1"]),
+                                     ("nyhead-6tissue-1mm.nii.gz", 300000, [])):
+            name = "%s at %d" % (image.split("-")[0], budget)
+            _, r = mesh(os.path.join(SHARED, image), ["--max-tets", str(budget)] + extra, work, "budget")
+            tets = r.get("tetrahedra", 0)
+            check(0.9 * budget <= tets <= budget, "%s: %d tets, within [0.9 N, N]" % (name, tets))
+            check(r.get("refinement", {}).get("stop_reason") == "the tet budget is spent",
+                  "%s: the report says the budget stopped refinement" % name)
+            check(r.get("topology", {}).get("solver_ready") is True, "%s: ready for a solver" % name)
+            check(20.0 - 1e-6 <= r.get("min_dihedral_deg", 0) and r.get("max_dihedral_deg", 180) <= 160.0 + 1e-6,
+                  "%s: angles in [20, 160]: %s, %s" % (name, r.get("min_dihedral_deg"), r.get("max_dihedral_deg")))
+            volumes = {label: t["volume_mm3"] / t["image_volume_mm3"] for label, t in r.get("tissues", {}).items()}
+            check(volumes and all(abs(v - 1.0) <= 0.03 for v in volumes.values()),
+                  "%s: every tissue within 3%% of its voxels' volume: %s" % (name, volumes))
     else:
-        print("SKIP: the nipype case needs ../shared/data")
+        print("SKIP: the nipype, k-means and New York Head cases need ../shared/data")
 
 check.finish()

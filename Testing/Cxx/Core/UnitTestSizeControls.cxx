@@ -2,6 +2,7 @@
 // tissue, and one clear error for each bad value.
 #include "cbc3d/base/TetTopology.h"
 #include "cbc3d/deformation/Deformation.h"
+#include "cbc3d/lattice/BCCLattice.h"
 #include "cbc3d/refinement/Refinement.h"
 
 #include "TestImages.h"
@@ -181,4 +182,45 @@ TEST(SizeControls, DeformationStretchesNoEdgePastItsLimit)
   };
   EXPECT_GT(deform(0.0), 4.0 + 1e-6);
   EXPECT_LE(deform(4.0), 4.0 + 1e-9);
+}
+
+TEST(SizeControls, ATetBudgetEndsWithinNinetyPercentAndTheBudget)
+{
+  // Nested balls asked for fidelity 0.99 make more tets than the budget without it.
+  cbc3d::LabelImage image = Cube(40, 0);
+  PaintBall(image, Eigen::Vector3d(19.5, 19.5, 19.5), 15.0, 1);
+  PaintBall(image, Eigen::Vector3d(17.0, 19.5, 19.5), 8.0, 2);
+  PaintBall(image, Eigen::Vector3d(24.0, 21.0, 19.5), 4.0, 3);
+  const cbc3d::TetMesh lattice = Lattice(image, 8.0);
+  cbc3d::RefinementParams params;
+  params.Fidelity = 0.99;
+  cbc3d::TetMesh free, budgeted;
+  cbc3d::RefinementResult freeResult, result;
+  ASSERT_TRUE(cbc3d::RefineMesh(image, lattice, params, free, freeResult).IsOk());
+  const std::int64_t budget = 4000;
+  ASSERT_GT(static_cast<std::int64_t>(free.Tets.size()), budget);
+  params.MaximumTets = budget;
+  ASSERT_TRUE(cbc3d::RefineMesh(image, lattice, params, budgeted, result).IsOk());
+  EXPECT_LE(static_cast<std::int64_t>(budgeted.Tets.size()), budget);
+  EXPECT_GE(static_cast<std::int64_t>(budgeted.Tets.size()), budget * 9 / 10);
+  EXPECT_EQ(result.StopReason, "the tet budget is spent");
+  EXPECT_TRUE(cbc3d::ValidateTetMesh(budgeted).IsOk());
+  params.MaximumTets = -1;
+  EXPECT_FALSE(cbc3d::RefineMesh(image, lattice, params, budgeted, result).IsOk());
+}
+
+TEST(SizeControls, ABudgetCoarsensTheAutomaticLatticeOnly)
+{
+  // 1000 mm^3 of tissue: 12 tets per cube, a quarter of a 48-tet budget, is a 10 mm cube.
+  const cbc3d::LabelImage image = Cube(10, 1);
+  EXPECT_NEAR(cbc3d::BudgetLatticeEdgeLength(image, 48), 10.0, 1e-9);
+  cbc3d::LatticeParams params;
+  EXPECT_NEAR(cbc3d::LatticeEdgeLengthFor(image, params), 8.0, 1e-12); // the automatic 8 voxels
+  params.MaximumTets = 48;
+  EXPECT_NEAR(cbc3d::LatticeEdgeLengthFor(image, params), 10.0, 1e-9);
+  params.MaximumTets = 1000000; // a generous budget keeps the automatic size
+  EXPECT_NEAR(cbc3d::LatticeEdgeLengthFor(image, params), 8.0, 1e-12);
+  params.EdgeLength = 3.0; // a size the user gave is kept
+  params.MaximumTets = 48;
+  EXPECT_NEAR(cbc3d::LatticeEdgeLengthFor(image, params), 3.0, 1e-12);
 }

@@ -71,6 +71,22 @@ TEST(SurfaceDistance, SummaryOfKnownDistances)
   EXPECT_DOUBLE_EQ(cbc3d::SummarizeSurfaceDistances(only, same).Percentile95, 19.0);
 }
 
+TEST(SurfaceDistance, TheWholeMeshsPercentileCountsEverySample)
+{
+  // A large tissue 1 mm off its boundary (100 samples each way) and a speck 22 mm off (2 each
+  // way): of the 102 samples each way, the 97th (the nearest-rank 95th percentile) is 1 mm, where
+  // the larger of the tissues' own percentiles would say 22 mm.
+  const std::vector<double> largeA(100, 1.0), largeB(100, 1.0), speckA(2, 22.0), speckB(2, 22.0);
+  const cbc3d::SurfaceDistanceSummary all =
+    cbc3d::SummarizeSurfaceDistancesTogether({ &largeA, &speckA }, { &largeB, &speckB });
+  EXPECT_DOUBLE_EQ(all.Percentile95, 1.0);
+  EXPECT_DOUBLE_EQ(all.Hausdorff, 22.0);
+  EXPECT_DOUBLE_EQ(all.Mean, (200.0 * 1.0 + 4.0 * 22.0) / 204.0);
+  // With the speck at 6 of 106 samples each way (over 5%), the percentile is the speck's.
+  const std::vector<double> bigSpeck(6, 22.0);
+  EXPECT_DOUBLE_EQ(cbc3d::SummarizeSurfaceDistancesTogether({ &largeA, &bigSpeck }, { &largeB, &bigSpeck }).Percentile95, 22.0);
+}
+
 TEST(SurfacePoints, BoundaryVoxelsRunByRunAreThoseOfAVoxelByVoxelScan)
 {
   // Random blobs of three tissues and two background labels, in a stored box that is the whole

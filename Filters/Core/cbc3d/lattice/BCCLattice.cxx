@@ -116,6 +116,29 @@ double DefaultLatticeEdgeLength(const LabelImage& image)
   return 8.0 * image.Spacing.minCoeff();
 }
 
+double BudgetLatticeEdgeLength(const LabelImage& image, std::int64_t maximumTets)
+{
+  std::int64_t tissueVoxels = 0;
+  for (const std::int32_t label : image.Labels)
+    tissueVoxels += image.IsTissue(label);
+  const double volume = double(tissueVoxels) * image.Spacing.prod();
+  return std::cbrt(4.0 * 12.0 * volume / double(std::max<std::int64_t>(1, maximumTets)));
+}
+
+double LatticeEdgeLengthFor(const LabelImage& image, const LatticeParams& params)
+{
+  if (params.EdgeLength != 0.0)
+  {
+    return params.EdgeLength;
+  }
+  const double automatic = DefaultLatticeEdgeLength(image);
+  if (params.MaximumTets <= 0)
+  {
+    return automatic;
+  }
+  return std::max(automatic, std::min(BudgetLatticeEdgeLength(image, params.MaximumTets), MaximumLatticeEdgeLength(image)));
+}
+
 double MaximumLatticeEdgeLength(const LabelImage& image)
 {
   double widest = 0.0;
@@ -147,7 +170,7 @@ namespace
 // that would not fit in the memory allowed.
 Status ChooseLatticeEdge(const LabelImage& image, const LatticeParams& params, double& h)
 {
-  h = params.EdgeLength == 0.0 ? DefaultLatticeEdgeLength(image) : params.EdgeLength;
+  h = LatticeEdgeLengthFor(image, params);
   if (!(h > 0.0) || !std::isfinite(h))
   {
     return Status::Error("the lattice edge length must be a positive number of millimetres");

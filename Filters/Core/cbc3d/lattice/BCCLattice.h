@@ -18,6 +18,10 @@ struct LatticeParams
 {
   /// Edge of the lattice cube in mm (the paper's BCC_size); 0 = DefaultLatticeEdgeLength.
   double EdgeLength = 0.0;
+  /// With the automatic edge length: a tet budget (0 = none). The edge grows past the
+  /// automatic one where the lattice would hold more than a quarter of it (BudgetLatticeEdgeLength),
+  /// leaving refinement the rest.
+  std::int64_t MaximumTets = 0;
   /// OpenMP threads; 0 = all cores.
   int NumberOfThreads = 0;
   /// Refuse a lattice whose estimated memory exceeds this (bytes); 0 = half the machine.
@@ -26,6 +30,14 @@ struct LatticeParams
 
 /// The paper's choice of 8 voxel spacings, measured along the finest image axis.
 double DefaultLatticeEdgeLength(const LabelImage& image);
+
+/// The shortest edge length whose lattice holds about a quarter of `maximumTets` tets: a BCC
+/// lattice has 12 tets per cube, so 12 V / h^3 over the tissues' volume V.
+double BudgetLatticeEdgeLength(const LabelImage& image, std::int64_t maximumTets);
+
+/// The edge length BuildBCCLattice uses: params.EdgeLength, or where that is 0 the automatic
+/// one, grown for a tet budget.
+double LatticeEdgeLengthFor(const LabelImage& image, const LatticeParams& params);
 
 /// The largest useful edge length: the image's extent along its widest axis. A larger cube
 /// than the whole image gives a handful of tets, and sampling them costs time in proportion to

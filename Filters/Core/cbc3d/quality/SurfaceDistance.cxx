@@ -33,4 +33,17 @@ SurfaceDistanceSummary SummarizeSurfaceDistances(std::vector<double>& aToB,
   summary.Percentile95 = std::max(Percentile(aToB, 0.95), Percentile(bToA, 0.95));
   return summary;
 }
+
+SurfaceDistanceSummary SummarizeSurfaceDistancesTogether(const std::vector<const std::vector<double>*>& aToB,
+  const std::vector<const std::vector<double>*>& bToA)
+{
+  const auto join = [](const std::vector<const std::vector<double>*>& lists) {
+    std::vector<double> joined;
+    for (const std::vector<double>* list : lists)
+      joined.insert(joined.end(), list->begin(), list->end());
+    return joined;
+  };
+  std::vector<double> a = join(aToB), b = join(bToA);
+  return SummarizeSurfaceDistances(a, b);
+}
 } // namespace cbc3d

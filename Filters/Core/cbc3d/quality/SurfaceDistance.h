@@ -19,6 +19,12 @@ struct SurfaceDistanceSummary
 /// Summarizes directed distances; both lists must be non-empty. Reorders their contents.
 SurfaceDistanceSummary SummarizeSurfaceDistances(std::vector<double>& aToB,
   std::vector<double>& bToA);
+
+/// The summary of several pairs' distances as one sample, each directed list joined (the whole
+/// mesh's, from its tissues'): a pair with few points weighs as little as it holds. Every
+/// joined list must be non-empty.
+SurfaceDistanceSummary SummarizeSurfaceDistancesTogether(const std::vector<const std::vector<double>*>& aToB,
+  const std::vector<const std::vector<double>*>& bToA);
 } // namespace cbc3d
 
 #endif

@@ -9,7 +9,9 @@
 #include "cbc3d/refinement/EdgeLimits.h"
 #include "cbc3d/refinement/KeptComponents.h"
 #include "cbc3d/refinement/LabelledMesh.h"
+#include "cbc3d/refinement/RefinementInputs.h"
 #include "cbc3d/refinement/SurfaceEars.h"
+#include "cbc3d/refinement/TetBudget.h"
 #include "cbc3d/sampling/TetVoxelSampler.h"
 #include "cbc3d/sampling/TissueComponents.h"
 #include "cbc3d/soundlabels/ManifoldRepair.h"
@@ -33,69 +35,11 @@ namespace
 // Rounds of refining again where the sound labels left tets beyond an edge limit.
 constexpr int EdgeLimitRounds = 3;
 
+// The share of a tet budget the passes aim at.
+constexpr double BudgetAim = 0.95;
+
 // Bytes per tet at peak: the hierarchy, the final tets, their samples and the VTK output.
 constexpr double BytesPerTet = 400.0;
-
-// The image, the mesh to refine and the parameters' ranges, or an error naming what is wrong.
-Status ValidateInputs(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params)
-{
-  const Status valid = ValidateLabelImage(image);
-  if (!valid.IsOk())
-  {
-    return valid;
-  }
-  if (!(params.Fidelity >= 0.0 && params.Fidelity <= 1.0))
-  {
-    return Status::Error("the fidelity must be a number from 0 to 1");
-  }
-  for (const auto& [label, fidelity] : params.FidelityByTissue)
-  {
-    if (!image.IsTissue(label))
-      return Status::Error("label " + std::to_string(label) + " is background, not a tissue: it has no fidelity");
-    if (!(fidelity >= 0.0 && fidelity <= 1.0))
-      return Status::Error("the fidelity of tissue " + std::to_string(label) + " must be a number from 0 to 1");
-  }
-  if (!(params.MaximumEdge.All >= 0.0) || !std::isfinite(params.MaximumEdge.All))
-  {
-    return Status::Error("the maximum edge length must be 0 (none) or a positive length in mm");
-  }
-  for (const auto& [label, length] : params.MaximumEdge.ByTissue)
-  {
-    if (!image.IsTissue(label))
-      return Status::Error("label " + std::to_string(label) + " is background, not a tissue: it has no edge limit");
-    if (!(length > 0.0) || !std::isfinite(length))
-      return Status::Error("the maximum edge length of tissue " + std::to_string(label) + " must be a positive length in mm");
-  }
-  if (!(params.MinimumEdgeLength >= 0.0) || !std::isfinite(params.MinimumEdgeLength))
-  {
-    return Status::Error("the minimum edge length must be 0 (automatic) or a positive length in mm");
-  }
-  if (!std::isfinite(params.BoundaryDistance))
-  {
-    return Status::Error("the boundary distance must be 0 (automatic), negative (none) or a "
-                         "length in mm");
-  }
-  if (lattice.Tets.empty())
-  {
-    return Status::Error("the mesh to refine has no tets");
-  }
-  return CheckEdgeLimitsAboveFloor(params);
-}
-
-// A per-tissue target for a label with no voxel in the image is a mistake worth naming.
-Status CheckTissuesPresent(const TissueComponents& components, const RefinementParams& params)
-{
-  const std::set<std::int32_t> present(components.Label.begin(), components.Label.end());
-  for (const auto* targets : { &params.FidelityByTissue, &params.MaximumEdge.ByTissue })
-  {
-    for (const auto& entry : *targets)
-    {
-      if (!present.count(entry.first))
-        return Status::Error("the image has no voxel of tissue " + std::to_string(entry.first));
-    }
-  }
-  return Status::Ok();
-}
 
 // Which leaves to split red for fidelity: those whose tets cross the boundary of a tissue below
 // the target, and those holding a tissue component that no tet of its tissue represents yet.
@@ -266,7 +210,8 @@ struct PassesEnd
     NoRefinementAsked, // fidelity 0
     TargetsReached,    // no tissue's fidelity (nor the boundary distance) wants a split
     AtMinimumEdge,     // splits are wanted, at tets that may not be split
-    MemoryLimit        // the splits would pass it
+    MemoryLimit,       // the splits would pass it
+    TetBudget          // no more splits fit the budget of tets
   };
   Kind End = TargetsReached;
   std::int64_t ExpectedTets = 0; // with MemoryLimit: the tets the splits would have made
@@ -290,6 +235,8 @@ std::string StopReason(const PassesEnd& passes, bool coverage, const CoveragePro
     case PassesEnd::MemoryLimit:
       reason << "stopped before exceeding the memory limit (about " << passes.ExpectedTets << " tets)";
       return reason.str();
+    case PassesEnd::TetBudget:
+      return "the tet budget is spent";
     case PassesEnd::TargetsReached:
       break;
   }
@@ -323,8 +270,9 @@ std::size_t KeepSplittable(const RedGreenMesh& hierarchy, const PassLimits& limi
     }
     anyWanted = true;
     const double floor = marked[red] == MarkedForEdgeLimit ? limits.EdgeLimitFloor : limits.MinimumEdge;
-    marked[red] = hierarchy.ShortestEdge(red) / 2.0 >= floor * (1.0 - 1e-9);
-    splits += marked[red];
+    if (!(hierarchy.ShortestEdge(red) / 2.0 >= floor * (1.0 - 1e-9)))
+      marked[red] = 0;
+    splits += marked[red] != 0;
   }
   return splits;
 }
@@ -337,7 +285,7 @@ std::size_t KeepSplittable(const RedGreenMesh& hierarchy, const PassLimits& limi
 bool SplitOnePass(const LabelImage& image, const TissueComponents& components, const RefinementParams& params,
   const BoundaryCoverage* coverage, double distance, const PassLimits& limits,
   const std::map<std::int32_t, TissueFidelity>& fidelity, const std::vector<char>& componentInMesh,
-  const LabelledMesh& mesh, RedGreenMesh& hierarchy, CoverageProgress& progress, PassesEnd& end)
+  const LabelledMesh& mesh, RedGreenMesh& hierarchy, CoverageProgress& progress, TetBudget* budget, PassesEnd& end)
 {
   std::vector<char> marked = MarkForFidelity(image, components, params, mesh, fidelity, componentInMesh,
     hierarchy.Reds().size());
@@ -346,7 +294,15 @@ bool SplitOnePass(const LabelImage& image, const TissueComponents& components, c
   const bool coverageWanted = coverage && !progress.Stalled &&
     MarkForCoverage(*coverage, distance, hierarchy, mesh, limits.MinimumEdge, progress, marked, bisect);
   bool anyWanted = coverageWanted;
-  const std::size_t splits = KeepSplittable(hierarchy, limits, marked, anyWanted);
+  std::size_t splits = KeepSplittable(hierarchy, limits, marked, anyWanted);
+  bool fits = true;
+  if (budget && (splits > 0 || !bisect.empty()))
+    splits = budget->Keep(image, mesh, hierarchy, marked, bisect, params.NumberOfThreads, fits);
+  if (!fits)
+  {
+    end.End = PassesEnd::TetBudget;
+    return false;
+  }
   if (splits == 0 && bisect.empty())
   {
     end.End = anyWanted ? PassesEnd::AtMinimumEdge : PassesEnd::TargetsReached;
@@ -415,6 +371,10 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   std::vector<char> componentInMesh;
   CoverageProgress coverageProgress;
   PassesEnd passesEnd;
+  // The passes aim a little under the budget: making the labels sound moves the count.
+  const std::unique_ptr<TetBudget> budget = params.MaximumTets > 0
+    ? std::make_unique<TetBudget>(std::llround(BudgetAim * double(params.MaximumTets)))
+    : nullptr;
   const int expectedPasses = 2 + static_cast<int>(std::ceil(std::log2(
     std::max(1.0, hierarchy.ShortestEdge(0) / minimumEdge))));
 
@@ -437,8 +397,8 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
       }
 
       if (!SplitOnePass(image, components, params, coverage.get(), result.BoundaryDistance,
-            PassLimits{ minimumEdge, params.MinimumEdgeLength, memoryLimit }, fidelity, componentInMesh, mesh, hierarchy, coverageProgress,
-            passesEnd))
+            PassLimits{ minimumEdge, params.MinimumEdgeLength, memoryLimit }, fidelity, componentInMesh, mesh,
+            hierarchy, coverageProgress, budget.get(), passesEnd))
       {
         break;
       }

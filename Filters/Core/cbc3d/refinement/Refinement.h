@@ -46,6 +46,9 @@ struct RefinementParams
   /// surfaces, no piece the image lacks, no cavity opened: see SoundLabels.h, and the ring of
   /// background tets, AddBackgroundRing, added first); false leaves the majority labels.
   bool SoundLabels = true;
+  /// At most this many tets in the output (0 = no budget): each pass keeps the splits that fit,
+  /// those that gain the most fidelity first (edge limits before all).
+  std::int64_t MaximumTets = 0;
   /// OpenMP threads; 0 = all cores.
   int NumberOfThreads = 0;
   /// Stop refining before the mesh would need more memory than this (bytes); 0 = half the machine.
