@@ -26,10 +26,13 @@ struct LatticeParams
 
 /// The paper's choice of 8 voxel spacings, measured along the finest image axis.
 double DefaultLatticeEdgeLength(const LabelImage& image);
+/// The same from the voxel spacing alone (all that a pipeline knows before it reads voxels).
+double DefaultLatticeEdgeLength(const Eigen::Vector3d& spacing);
 
 /// The largest useful edge length: the image's extent along its widest axis. A larger cube
 /// than the whole image gives a handful of tets, and sampling them costs time in proportion to
-/// their volume, so BuildBCCLattice refuses it (given explicitly; the default is kept).
+/// their volume, so BuildBCCLattice refuses it when given explicitly, unless it is no larger
+/// than the default (kept, as cheap, over an image narrower than 8 voxels).
 double MaximumLatticeEdgeLength(const LabelImage& image);
 
 /// Estimated peak memory of BuildBCCLattice for this edge length, in bytes.
