@@ -8,6 +8,8 @@
 #include "cbc3d/base/LabelImage.h"
 #include "cbc3d/base/Status.h"
 #include "cbc3d/base/TetMesh.h"
+#include "cbc3d/lattice/BCCLattice.h"
+#include "cbc3d/refinement/Refinement.h"
 
 #include <vtkDataObject.h>
 #include <vtkDataSetAttributes.h>
@@ -55,6 +57,42 @@ int vtkCBC3DAlgorithm::FillInputPortInformation(int port, vtkInformation* info)
 bool vtkCBC3DAlgorithm::HasImage(vtkInformationVector** inputVector) const
 {
   return inputVector[this->ImagePort]->GetNumberOfInformationObjects() > 0;
+}
+
+int vtkCBC3DAlgorithm::RequestInformation(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector*)
+{
+  std::fill_n(this->InformationSpacing, 3, 0.0);
+  vtkInformation* image = inputVector[this->ImagePort]->GetInformationObject(0);
+  if (image && image->Has(vtkDataObject::SPACING()))
+  {
+    image->Get(vtkDataObject::SPACING(), this->InformationSpacing);
+  }
+  return 1;
+}
+
+namespace
+{
+// The spacing as the core takes it, or none where some axis has no positive, finite spacing.
+bool KnownSpacing(const double spacing[3], Eigen::Vector3d& out)
+{
+  out = Eigen::Vector3d(spacing[0], spacing[1], spacing[2]);
+  return out.allFinite() && (out.array() > 0.0).all();
+}
+} // namespace
+
+double vtkCBC3DAlgorithm::AutomaticLatticeEdge() const
+{
+  Eigen::Vector3d spacing;
+  return KnownSpacing(this->InformationSpacing, spacing) ? cbc3d::DefaultLatticeEdgeLength(spacing)
+                                                         : 0.0;
+}
+
+double vtkCBC3DAlgorithm::AutomaticMinimumEdge() const
+{
+  Eigen::Vector3d spacing;
+  return KnownSpacing(this->InformationSpacing, spacing) ? cbc3d::DefaultMinimumEdgeLength(spacing)
+                                                         : 0.0;
 }
 
 void vtkCBC3DAlgorithm::AddBackgroundLabel(vtkTypeInt64 label)

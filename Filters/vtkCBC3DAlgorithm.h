@@ -107,6 +107,21 @@ protected:
   ~vtkCBC3DAlgorithm() override = default;
 
   /**
+   * Keeps the image's voxel spacing from the pipeline information, known before any voxel is
+   * read, so that the ParaView panel can show the sizes that 0 stands for (the subclasses'
+   * GetAutomatic... getters).
+   */
+  int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
+  ///@{
+  /// The automatic lattice edge and minimum edge length, as the core computes them from the
+  /// spacing of the last RequestInformation; 0 while that spacing is unknown.
+  double AutomaticLatticeEdge() const;
+  double AutomaticMinimumEdge() const;
+  ///@}
+
+  /**
    * The core's view of the label image on its port, its labels coded by image.Codes, which
    * can also code `otherValues` (a mesh's labels); shared with the other stages that read the
    * same image (vtkCBC3DLabelImageCache). On failure reports the problem with vtkErrorMacro
@@ -146,6 +161,7 @@ protected:
   /// Whether any edge limit is set.
   bool HasEdgeLimits() const;
 
+  double InformationSpacing[3] = { 0.0, 0.0, 0.0 };
   std::vector<vtkTypeInt64> BackgroundLabels = { 0 };
   int NumberOfThreads = 0;
   double MaximumEdgeLength = 0.0;

@@ -49,6 +49,12 @@ public:
   vtkGetMacro(EdgeLength, double);
   ///@}
 
+  /**
+   * The edge length that EdgeLength 0 stands for, from the image's spacing as of the last
+   * UpdateInformation (0 while unknown): the value the ParaView panel fills in.
+   */
+  double GetAutomaticEdgeLength() const { return this->AutomaticLatticeEdge(); }
+
 protected:
   vtkCBC3DBCCLattice() = default;
   ~vtkCBC3DBCCLattice() override = default;

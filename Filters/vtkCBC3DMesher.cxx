@@ -5,6 +5,8 @@
 #include "vtkCBC3DMeshQuality.h"
 #include "vtkCBC3DRefinement.h"
 
+#include "cbc3d/refinement/Refinement.h"
+
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
 #include <vtkImageData.h>
@@ -161,6 +163,13 @@ int vtkCBC3DMesher::RequestData(
   output->ShallowCopy(quality->GetOutput());
   this->SetProgressText(nullptr);
   return 1;
+}
+
+double vtkCBC3DMesher::GetAutomaticBoundaryDistance() const
+{
+  // Refinement takes 3/8 of the lattice's longest edges, its cube edges.
+  const double lattice = this->EdgeLength > 0.0 ? this->EdgeLength : this->AutomaticLatticeEdge();
+  return lattice > 0.0 ? cbc3d::DefaultBoundaryDistance(lattice) : 0.0;
 }
 
 void vtkCBC3DMesher::SetTissueFidelity(double label, double fidelity)

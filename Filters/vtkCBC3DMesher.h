@@ -72,6 +72,17 @@ public:
 
   ///@{
   /**
+   * The values that EdgeLength, MinimumEdgeLength and BoundaryDistance 0 stand for, from the
+   * image's spacing as of the last UpdateInformation (0 while unknown): the ParaView panel
+   * fills them in. The boundary distance follows EdgeLength where that is set.
+   */
+  double GetAutomaticEdgeLength() const { return this->AutomaticLatticeEdge(); }
+  double GetAutomaticMinimumEdgeLength() const { return this->AutomaticMinimumEdge(); }
+  double GetAutomaticBoundaryDistance() const;
+  ///@}
+
+  ///@{
+  /**
    * Deformation iterations (default 5; 0 skips deformation) and target pattern (0 Vertex,
    * 1 Edge (default), 2 Face, 3 None; see vtkCBC3DDeformation).
    */

@@ -1,6 +1,7 @@
 #include "vtkCBC3DRefinement.h"
 
 #include "vtkCBC3DArrayNames.h"
+#include "vtkCBC3DBCCLattice.h"
 #include "vtkCBC3DConvert.h"
 #include "vtkCBC3DLabelValues.h"
 
@@ -25,6 +26,44 @@ vtkStandardNewMacro(vtkCBC3DRefinement);
 vtkCBC3DRefinement::vtkCBC3DRefinement()
   : vtkCBC3DAlgorithm(ImageInput::Port1)
 {
+}
+
+namespace
+{
+// The CBC3D BCC lattice that makes the mesh on port 0, if one does. ParaView follows every
+// filter's output with a vtkPVPostFilter (array conversions on demand), looked through here.
+vtkCBC3DBCCLattice* InputLattice(vtkAlgorithm* producer)
+{
+  if (producer && producer->IsA("vtkPVPostFilter") && producer->GetNumberOfInputConnections(0) == 1)
+  {
+    producer = producer->GetInputAlgorithm(0, 0);
+  }
+  return vtkCBC3DBCCLattice::SafeDownCast(producer);
+}
+} // namespace
+
+int vtkCBC3DRefinement::RequestInformation(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  this->Superclass::RequestInformation(request, inputVector, outputVector);
+  // The lattice's own RequestInformation, upstream, has just read the image's spacing.
+  vtkCBC3DBCCLattice* lattice = this->GetNumberOfInputConnections(0) == 1
+    ? InputLattice(this->GetInputAlgorithm(0, 0))
+    : nullptr;
+  this->InputLatticeEdge = 0.0;
+  if (lattice)
+  {
+    const double edge = lattice->GetEdgeLength();
+    this->InputLatticeEdge = edge > 0.0 ? edge : lattice->GetAutomaticEdgeLength();
+  }
+  return 1;
+}
+
+double vtkCBC3DRefinement::GetAutomaticBoundaryDistance() const
+{
+  // A BCC lattice's longest edges are its cube edges.
+  const double edge = this->InputLatticeEdge;
+  return edge > 0.0 ? cbc3d::DefaultBoundaryDistance(edge) : 0.0;
 }
 
 int vtkCBC3DRefinement::RequestData(

@@ -97,6 +97,17 @@ public:
 
   ///@{
   /**
+   * The values that MinimumEdgeLength 0 and BoundaryDistance 0 stand for, as of the last
+   * UpdateInformation: the ParaView panel fills them in. The first comes from the image's
+   * spacing, the second from the edge of the vtkCBC3DBCCLattice that makes the mesh on port 0
+   * (a BCC lattice's longest edges are its cube edges); each is 0 while unknown.
+   */
+  double GetAutomaticMinimumEdgeLength() const { return this->AutomaticMinimumEdge(); }
+  double GetAutomaticBoundaryDistance() const;
+  ///@}
+
+  ///@{
+  /**
    * Tissue components (6-connected) of at least this many voxels always keep tets of their
    * tissue (default 8).
    */
@@ -120,9 +131,12 @@ protected:
   vtkCBC3DRefinement();
   ~vtkCBC3DRefinement() override = default;
 
+  int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
+  double InputLatticeEdge = 0.0; // from RequestInformation; 0: unknown
   double Fidelity = 0.95;
   double MinimumEdgeLength = 0.0;
   double BoundaryDistance = 0.0;

@@ -113,7 +113,12 @@ std::string FormatBytes(double bytes)
 
 double DefaultLatticeEdgeLength(const LabelImage& image)
 {
-  return 8.0 * image.Spacing.minCoeff();
+  return DefaultLatticeEdgeLength(image.Spacing);
+}
+
+double DefaultLatticeEdgeLength(const Eigen::Vector3d& spacing)
+{
+  return 8.0 * spacing.minCoeff();
 }
 
 double BudgetLatticeEdgeLength(const LabelImage& image, std::int64_t maximumTets)
@@ -127,11 +132,12 @@ double BudgetLatticeEdgeLength(const LabelImage& image, std::int64_t maximumTets
 
 double LatticeEdgeLengthFor(const LabelImage& image, const LatticeParams& params)
 {
-  if (params.EdgeLength != 0.0)
+  const double automatic = DefaultLatticeEdgeLength(image);
+  // The automatic size given as a number (as the ParaView panel shows it) counts as automatic.
+  if (params.EdgeLength != 0.0 && std::abs(params.EdgeLength - automatic) > 1e-9 * automatic)
   {
     return params.EdgeLength;
   }
-  const double automatic = DefaultLatticeEdgeLength(image);
   if (params.MaximumTets <= 0)
   {
     return automatic;
@@ -175,8 +181,10 @@ Status ChooseLatticeEdge(const LabelImage& image, const LatticeParams& params, d
   {
     return Status::Error("the lattice edge length must be a positive number of millimetres");
   }
-  // (The default, 8 voxels, is cheap even over an image smaller than that, and is kept.)
-  if (params.EdgeLength != 0.0 && h > MaximumLatticeEdgeLength(image))
+  // (The default, 8 voxels, is cheap even over an image smaller than that, and is kept, also
+  // when given explicitly, as the ParaView panel gives it.)
+  if (params.EdgeLength != 0.0 &&
+    h > std::max(MaximumLatticeEdgeLength(image), DefaultLatticeEdgeLength(image)))
   {
     std::ostringstream msg;
     msg << "a lattice size of " << h << " mm is larger than the image (" << MaximumLatticeEdgeLength(image)

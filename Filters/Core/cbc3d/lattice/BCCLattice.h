@@ -30,18 +30,21 @@ struct LatticeParams
 
 /// The paper's choice of 8 voxel spacings, measured along the finest image axis.
 double DefaultLatticeEdgeLength(const LabelImage& image);
+/// The same from the voxel spacing alone (all that a pipeline knows before it reads voxels).
+double DefaultLatticeEdgeLength(const Eigen::Vector3d& spacing);
 
 /// The shortest edge length whose lattice holds about a quarter of `maximumTets` tets: a BCC
 /// lattice has 12 tets per cube, so 12 V / h^3 over the tissues' volume V.
 double BudgetLatticeEdgeLength(const LabelImage& image, std::int64_t maximumTets);
 
-/// The edge length BuildBCCLattice uses: params.EdgeLength, or where that is 0 the automatic
-/// one, grown for a tet budget.
+/// The edge length BuildBCCLattice uses: params.EdgeLength, or where that is 0 (or the
+/// automatic size itself, as a panel shows it) the automatic one, grown for a tet budget.
 double LatticeEdgeLengthFor(const LabelImage& image, const LatticeParams& params);
 
 /// The largest useful edge length: the image's extent along its widest axis. A larger cube
 /// than the whole image gives a handful of tets, and sampling them costs time in proportion to
-/// their volume, so BuildBCCLattice refuses it (given explicitly; the default is kept).
+/// their volume, so BuildBCCLattice refuses it when given explicitly, unless it is no larger
+/// than the default (kept, as cheap, over an image narrower than 8 voxels).
 double MaximumLatticeEdgeLength(const LabelImage& image);
 
 /// Estimated peak memory of BuildBCCLattice for this edge length, in bytes.

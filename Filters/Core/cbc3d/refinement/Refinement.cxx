@@ -195,7 +195,8 @@ std::unique_ptr<BoundaryCoverage> MakeCoverage(const LabelImage& image, const Ti
   {
     longest = std::max(longest, hierarchy.LongestEdge(red));
   }
-  result.BoundaryDistance = params.BoundaryDistance > 0.0 ? params.BoundaryDistance : 0.375 * longest;
+  result.BoundaryDistance =
+    params.BoundaryDistance > 0.0 ? params.BoundaryDistance : DefaultBoundaryDistance(longest);
   // Deformation moves a vertex by about an element size: the lattice's shortest edge.
   return std::make_unique<BoundaryCoverage>(image, components, params.MinimumComponentVoxels,
     hierarchy.ShortestEdge(0), params.NumberOfThreads);
@@ -349,8 +350,9 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   {
     return valid;
   }
-  const double minimumEdge = params.MinimumEdgeLength > 0.0 ? params.MinimumEdgeLength
-                                                            : std::cbrt(image.Spacing.prod());
+  const double minimumEdge = params.MinimumEdgeLength > 0.0
+    ? params.MinimumEdgeLength
+    : DefaultMinimumEdgeLength(image.Spacing);
   const std::size_t memoryLimit =
     params.MemoryLimitBytes > 0 ? params.MemoryLimitBytes : PhysicalMemoryBytes() / 2;
 

@@ -13,6 +13,7 @@
 #include "cbc3d/base/Status.h"
 #include "cbc3d/base/TetMesh.h"
 
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -102,6 +103,18 @@ struct RefinementResult
 /// vertex), every tet positively oriented, and the same for any thread count.
 Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params,
   TetMesh& out, RefinementResult& result, const Progress& progress = nullptr);
+
+/// The automatic MinimumEdgeLength (0): the voxel size, the cube root of the voxel volume.
+inline double DefaultMinimumEdgeLength(const Eigen::Vector3d& spacing)
+{
+  return std::cbrt(spacing.prod());
+}
+
+/// The automatic BoundaryDistance (0): 3/8 of the longest edge of the mesh to refine.
+inline double DefaultBoundaryDistance(double longestEdge)
+{
+  return 0.375 * longestEdge;
+}
 } // namespace cbc3d
 
 #endif
