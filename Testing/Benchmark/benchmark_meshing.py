@@ -19,11 +19,12 @@ edge --iterations 5`; background 1 for the k-means head) and prints Markdown tab
   by cbc3d at 1 and 2 threads (and all cores where there are more): time and memory against
   image size and thread count.
 
---curves replaces all of these by size curves: on each image, cbc3d at several lattice sizes
-and CGAL at several multiples of the paper's size criteria, each mesh's tets, Hausdorff distance
+--curves replaces all of these by size curves: on each image, cbc3d at several tet budgets
+(--max-tets; size_curves.py) and CGAL at several multiples of the paper's size criteria, each mesh's tets, Hausdorff distance
 (max and 95th percentile) and seconds, printed as a table, written as JSON and drawn with
 matplotlib (one PNG per image: HD against tets and seconds against tets). Only that mode imports
-matplotlib; without it the plots are skipped with a message.
+matplotlib; without it the plots are skipped with a message. Then each cbc3d mesh against CGAL
+at the same tets, interpolated along CGAL's curve (--images nyhead adds the 1 mm New York Head).
 
 Writes every figure as JSON too. Asserts nothing: read the figures. Exits 0 with a message
 where ../shared/data is missing.
@@ -31,8 +32,8 @@ where ../shared/data is missing.
     python3 Testing/Benchmark/benchmark_meshing.py [BUILD_DIR] [--iterations N] [--json FILE]
         [--no-cgal] [--cgal-runs N] [--images NAME ...] [--no-scaling | --scaling-only]
         [--scaling-factors 1,2,4] [--scaling-threads 1,2] [--no-targets]
-    /usr/bin/python3 Testing/Benchmark/benchmark_meshing.py [BUILD_DIR] --curves [--curve-sizes 4,6,8,12,16]
-        [--curve-cgal-factors 0.35,0.5,0.75,1,1.5,2,3] [--curve-cgal-limit SECONDS] [--no-curve-cgal-default]
+    /usr/bin/python3 Testing/Benchmark/benchmark_meshing.py [BUILD_DIR] --curves [--curve-budgets 20000,50000,...]
+        [--curve-cgal-factors 0.35,0.5,0.75,1,1.5,2,3,4] [--curve-cgal-limit SECONDS] [--no-curve-cgal-default]
         [--plots DIR] [--images NAME ...] [--no-cgal] [--json FILE]
     /usr/bin/python3 Testing/Benchmark/benchmark_meshing.py --curves-from JSON [--plots DIR] [--images NAME ...]
 """
@@ -49,6 +50,7 @@ import sys
 import tempfile
 import time
 
+import size_curves
 import speed_targets
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -61,6 +63,8 @@ CGAL_SIZES = (2.0, 2.0, 2.5)
 STAGES = ("read", "lattice", "refinement", "deformation", "quality", "write")
 IMAGES = [("cbc3d-brain.nii.gz", 0), ("cbc3d-nidus.nii.gz", 0), ("cbc3d-ventricles.nii.gz", 0),
           ("nipype-tissue-labels.nii.gz", 0), ("itk-t1-kmeans-labels.nii.gz", 1)]
+# The size curves also run on a real 1 mm head (--images nyhead; --curve-budgets up to 3000000).
+CURVE_HEADS = [("nyhead-6tissue-1mm.nii.gz", 0)]
 SCALING_IMAGE = "cbc3d-brain.nii.gz"
 # The paper's Table 4, case 1 (= cbc3d-brain.nii.gz): tets, min and max dihedral, HD.
 PAPER = {"cbc3d-brain.nii.gz": {"CBC3D paper": (69101, 12.20, 157.67, 3.47),
@@ -91,7 +95,7 @@ def parse_arguments():
     if os.path.basename(options.build) == "cbc3d":  # a path to the binary also works
         options.build = os.path.dirname(os.path.dirname(options.build))
     options.factors = [int(f) for f in options.scaling_factors.split(",")]
-    options.curve_sizes = positive_numbers(parser, "--curve-sizes", options.curve_sizes)
+    options.curve_budgets = [int(b) for b in positive_numbers(parser, "--curve-budgets", options.curve_budgets)]
     options.curve_cgal_factors = positive_numbers(parser, "--curve-cgal-factors", options.curve_cgal_factors)
     if options.json is None:
         options.json = "benchmark-curves.json" if options.curves else "benchmark.json"
@@ -104,10 +108,11 @@ def add_curve_arguments(parser, parts):
     """The --curves mode's options; --curves is one more choice beside --no-scaling and --scaling-only."""
     parts.add_argument("--curves", action="store_true",
                        help="size curves (HD and seconds against tets) instead of the tables")
-    parser.add_argument("--curve-sizes", default="4,6,8,12,16", help="cbc3d lattice sizes in mm (default 4,6,8,12,16)")
-    parser.add_argument("--curve-cgal-factors", default="0.35,0.5,0.75,1,1.5,2,3",
+    parser.add_argument("--curve-budgets", default="20000,50000,100000,200000,500000,1000000",
+                        help="cbc3d tet budgets, --max-tets (default 20000,50000,100000,200000,500000,1000000)")
+    parser.add_argument("--curve-cgal-factors", default="0.35,0.5,0.75,1,1.5,2,3,4",
                         help="multiples of the paper's CGAL facet size, facet distance and cell size "
-                        "(2, 2, 2.5 mm; default 0.35,0.5,0.75,1,1.5,2,3)")
+                        "(2, 2, 2.5 mm; default 0.35,0.5,0.75,1,1.5,2,3,4)")
     parser.add_argument("--curve-cgal-limit", type=float, default=300.0, metavar="SECONDS",
                         help="skip a CGAL factor whose predicted no-time-limit run (the previous, coarser one's "
                         "seconds times the cube of the size ratio) exceeds this (default 300; 0: no limit)")
@@ -547,14 +552,13 @@ def curve_point(r, seconds):
 
 
 def cbc3d_curve(options, cli, path, background, work):
-    """cbc3d at each lattice size, the paper's other settings; seconds = its whole run."""
+    """cbc3d at each tet budget (size_curves.py); seconds = its whole run."""
+    def run(settings):
+        return run_cbc3d(cli, path, background, options.iterations, work, settings=settings)
     points = []
-    for size in options.curve_sizes:
-        progress("  cbc3d --bcc-size %g" % size)
-        settings = ["--bcc-size", "%g" % size] + PAPER_SETTINGS[2:]
-        r = run_cbc3d(cli, path, background, options.iterations, work, settings=settings)
-        point = curve_point(r, r.get("seconds", {}).get("total"))
-        points.append(dict(point, bcc_size_mm=size))
+    for r in size_curves.budget_curve(run, options.curve_budgets, progress):
+        point = dict(curve_point(r, r.get("seconds", {}).get("total")), budget=r["budget"], fidelity=r["fidelity"])
+        points.append(point)
         progress("    " + point_text(point))
     return points
 
@@ -694,12 +698,12 @@ def plot_curves(pyplot, name, entry, folder):
     """One PNG per image: HD (max solid, 95th percentile dashed) and seconds against tets, log
     axes. cbc3d's points are tagged with the lattice size, CGAL's with the factor."""
     figure, (hd, seconds) = pyplot.subplots(1, 2, figsize=(10, 4))
-    ours = sorted(entry["cbc3d"], key=lambda p: -p["bcc_size_mm"])
+    ours = sorted(entry["cbc3d"], key=lambda p: p["budget"])
     theirs = sorted(entry.get("cgal", []), key=lambda p: -p["factor"])
     cgal_default = [dict(p["default"], factor=p["factor"]) for p in theirs if "tetrahedra" in p.get("default", {})]
-    ours_tag = lambda p: "%g" % p["bcc_size_mm"]
+    ours_tag = lambda p: "%gk" % (p["budget"] / 1000.0)
     theirs_tag = lambda p: "x%g" % p["factor"]
-    draw_series(hd, ours, "hausdorff_mm", "o-C0", "cbc3d (tag: lattice mm)", ours_tag)
+    draw_series(hd, ours, "hausdorff_mm", "o-C0", "cbc3d (tag: --max-tets)", ours_tag)
     draw_series(hd, ours, "hausdorff_95_mm", "o--C0", None, None, mfc="none")
     draw_series(hd, theirs, "hausdorff_mm", "s-C3", "CGAL no time limits (tag: size factor)", theirs_tag)
     draw_series(hd, theirs, "hausdorff_95_mm", "s--C3", None, None, mfc="none")
@@ -746,18 +750,26 @@ def print_curves(figures):
     rows = []
     for name, entry in figures["curves"].items():
         for p in entry["cbc3d"]:
-            rows.append(curve_row(name, "cbc3d", "%g mm" % p["bcc_size_mm"], p) + ["", ""])
+            rows.append(curve_row(name, "cbc3d", "--max-tets %d (F %g)" % (p["budget"], p["fidelity"]), p) + ["", ""])
         for p in entry.get("cgal", []):
             size = "x%g (%s mm)" % (p["factor"], " / ".join("%g" % s for s in p["sizes_mm"]))
             d = p.get("default", {})
             rows.append(curve_row(name, "CGAL", size, p) + (
                 ["%.2f" % d["seconds"], "%d" % d["tetrahedra"]] if "tetrahedra" in d else ["", ""]))
-    print("Size curves: cbc3d at each lattice size (%s); CGAL Mesh_3 at multiples of the paper's facet size, "
+    print("Size curves: cbc3d at each tet budget (%s; fidelity 0.99 where 0.95 stops short); CGAL Mesh_3 at multiples of the paper's facet size, "
           "facet distance and cell size (%s), no time limits; seconds: cbc3d's whole run, CGAL's make_mesh_3. "
           "Whole curves run: %.0f s." % (figures["settings"]["cbc3d"], CGAL_SETTINGS, figures.get("wall_seconds", 0)))
     print()
     print_table(["image", "mesher", "size", "tets", "HD max mm", "HD 95% mm", "mean mm", "seconds", "peak MB",
                  "CGAL default s", "CGAL default tets"], rows)
+    equal = []
+    for name, entry in figures["curves"].items():
+        equal += size_curves.equal_size_rows(name, entry["cbc3d"], entry.get("cgal", []))
+    if equal:
+        print()
+        print("cbc3d against CGAL (no time limits) at cbc3d's tets, CGAL interpolated along its curve:")
+        print()
+        print_table(size_curves.EQUAL_SIZE_HEADER, equal)
 
 
 def curve_row(name, mesher, size, p):
@@ -771,7 +783,8 @@ def curve_row(name, mesher, size, p):
 
 def main():
     options = parse_arguments()
-    images = [(name, background) for name, background in IMAGES
+    candidates = IMAGES + CURVE_HEADS if options.curves or options.curves_from else IMAGES
+    images = [(name, background) for name, background in candidates
               if not options.images or any(part in name for part in options.images)]
     if not images:
         print("no image of %s matches %s" % (", ".join(name for name, _ in IMAGES), " ".join(options.images)))

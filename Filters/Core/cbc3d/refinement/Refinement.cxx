@@ -35,8 +35,11 @@ namespace
 // Rounds of refining again where the sound labels left tets beyond an edge limit.
 constexpr int EdgeLimitRounds = 3;
 
-// The share of a tet budget the passes aim at.
+// The share of a tet budget the passes aim at, how many times refinement may start again aiming
+// lower, and how far under the share it went over the next aim goes.
 constexpr double BudgetAim = 0.95;
+constexpr int BudgetAttempts = 3;
+constexpr double BudgetRetryMargin = 0.98;
 
 // Bytes per tet at peak: the hierarchy, the final tets, their samples and the VTK output.
 constexpr double BytesPerTet = 400.0;
@@ -330,18 +333,10 @@ bool SplitOnePass(const LabelImage& image, const TissueComponents& components, c
   }
   return true;
 }
-} // namespace
 
-bool RefinementParams::AsksForRefinement() const
-{
-  const auto positive = [](const std::map<std::int32_t, double>& values) {
-    return std::any_of(values.begin(), values.end(), [](const auto& entry) { return entry.second > 0.0; });
-  };
-  return this->Fidelity > 0.0 || positive(this->FidelityByTissue) || this->MaximumEdge.Any();
-}
-
-Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params,
-  TetMesh& out, RefinementResult& result, const Progress& progress)
+// One refinement from the lattice, the passes aiming at `budgetAim` of the tet budget.
+Status RefineToAim(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params,
+  double budgetAim, TetMesh& out, RefinementResult& result, const Progress& progress)
 {
   out = TetMesh();
   result = RefinementResult();
@@ -375,7 +370,7 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   PassesEnd passesEnd;
   // The passes aim a little under the budget: making the labels sound moves the count.
   const std::unique_ptr<TetBudget> budget = params.MaximumTets > 0
-    ? std::make_unique<TetBudget>(std::llround(BudgetAim * double(params.MaximumTets)))
+    ? std::make_unique<TetBudget>(std::llround(budgetAim * double(params.MaximumTets)))
     : nullptr;
   const int expectedPasses = 2 + static_cast<int>(std::ceil(std::log2(
     std::max(1.0, hierarchy.ShortestEdge(0) / minimumEdge))));
@@ -449,5 +444,32 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
     progress(1.0);
   }
   return Status::Ok();
+}
+} // namespace
+
+bool RefinementParams::AsksForRefinement() const
+{
+  const auto positive = [](const std::map<std::int32_t, double>& values) {
+    return std::any_of(values.begin(), values.end(), [](const auto& entry) { return entry.second > 0.0; });
+  };
+  return this->Fidelity > 0.0 || positive(this->FidelityByTissue) || this->MaximumEdge.Any();
+}
+
+Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params,
+  TetMesh& out, RefinementResult& result, const Progress& progress)
+{
+  // Making the labels sound after the passes moves the count, most on coarse meshes: where the
+  // mesh passes the budget, refinement starts again aiming lower by the share it went over.
+  double aim = BudgetAim;
+  for (int attempt = 0;; ++attempt)
+  {
+    const Status status = RefineToAim(image, lattice, params, aim, out, result, progress);
+    const auto tets = static_cast<std::int64_t>(out.Tets.size());
+    if (!status.IsOk() || params.MaximumTets <= 0 || tets <= params.MaximumTets || attempt == BudgetAttempts)
+    {
+      return status;
+    }
+    aim *= BudgetRetryMargin * double(params.MaximumTets) / double(tets);
+  }
 }
 } // namespace cbc3d

@@ -1,0 +1,85 @@
+# Renders Documentation/images/size-budgets-nyhead.png, the New York Head (1 mm) at three tet
+# budgets, clipped through its middle, one colour per tissue:
+#   xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" pvpython Documentation/MakeSizePictures.py \
+#     build/lib/paraview-5.11/plugins/CBC3D/CBC3D.so
+# Needs ../shared/data; says so and stops without it.
+import os
+import sys
+
+from paraview.simple import *  # noqa: F401,F403
+
+plugin = sys.argv[1] if len(sys.argv) > 1 else os.environ["CBC3D_PLUGIN"]
+LoadPlugin(plugin, remote=False, ns=globals())
+here = os.path.dirname(os.path.abspath(__file__))
+head = os.path.join(here, "..", "..", "shared", "data", "nyhead-6tissue-1mm.nii.gz")
+if not os.path.exists(head):
+    print("skipped: %s is absent" % head)
+    sys.exit(0)
+BUDGETS = (50000, 300000, 1000000)
+# The New York Head's tissues as ROAST names them, each with its own colour.
+TISSUES = [("1", "white matter", (0.95, 0.93, 0.85)), ("2", "grey matter", (0.55, 0.55, 0.6)),
+           ("3", "CSF", (0.3, 0.6, 0.95)), ("4", "bone", (0.95, 0.85, 0.55)),
+           ("5", "skin and soft tissue", (0.9, 0.6, 0.55)), ("6", "air", (0.7, 0.9, 0.75))]
+
+
+def tissue_colours(lut):
+    """One colour per label, named in the legend: a categorical map, not a continuous bar."""
+    lut.InterpretValuesAsCategories = 1
+    lut.Annotations = [value for label, name, _ in TISSUES for value in (label, name)]
+    lut.IndexedColors = [c for _, _, colour in TISSUES for c in colour]
+
+
+image = OpenDataFile(head)
+layout = CreateLayout("budgets")
+layout.SplitHorizontal(0, 1.0 / 3.0)
+layout.SplitHorizontal(2, 0.5)
+CELLS = (1, 5, 6)  # the layout's three cells, left to right
+views = []
+for i, budget in enumerate(BUDGETS):
+    mesher = CBC3DImageToMesh(Input=image)
+    mesher.MaximumNumberOfTets = budget
+    mesher.LatticeSize = 0  # automatic: the budget may make the lattice coarser
+    mesher.UpdatePipeline()
+    tets = mesher.GetDataInformation().GetNumberOfCells()
+    bounds = mesher.GetDataInformation().GetBounds()
+    centre = [(bounds[2 * a] + bounds[2 * a + 1]) / 2 for a in range(3)]
+    clip = Clip(Input=mesher)
+    clip.ClipType = "Plane"
+    clip.ClipType.Origin = centre
+    clip.ClipType.Normal = [1, 0, 0]
+    clip.Crinkleclip = 1
+    view = CreateView("RenderView")
+    AssignViewToLayout(view=view, layout=layout, hint=CELLS[i])
+    view.OrientationAxesVisibility = 0
+    view.Background = [1, 1, 1]
+    try:
+        view.UseColorPaletteForBackground = 0
+    except AttributeError:
+        pass
+    display = Show(clip, view)
+    display.SetRepresentationType("Surface With Edges")
+    display.EdgeColor = [0.15, 0.15, 0.15]
+    ColorBy(display, ("CELLS", "Label"))
+    lut = GetColorTransferFunction("Label")
+    tissue_colours(lut)
+    display.SetScalarBarVisibility(view, i == len(BUDGETS) - 1)
+    if i == len(BUDGETS) - 1:
+        bar = GetScalarBar(lut, view)
+        bar.Title = "tissue"
+        bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
+        bar.TitleFontSize = bar.LabelFontSize = 16
+    title = Text(Text="--max-tets %d: %d tets" % (budget, tets))
+    text = Show(title, view)
+    text.Color = [0.1, 0.1, 0.1]
+    text.FontSize = 18
+    text.WindowLocation = "Upper Center"
+    camera = view.GetActiveCamera()
+    camera.SetFocalPoint(*centre)
+    camera.SetPosition(centre[0] + 600, centre[1], centre[2])
+    camera.SetViewUp(0, 0, 1)
+    view.ResetCamera()
+    views.append(view)
+# Each view is zoomed to its clip: the same head fills each third.
+out = os.path.join(here, "images", "size-budgets-nyhead.png")
+SaveScreenshot(out, layout, SaveAllViews=1, ImageResolution=[1800, 700])
+print("wrote", out)
