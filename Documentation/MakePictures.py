@@ -13,7 +13,7 @@ here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.dirname(here)
 shared = os.path.join(root, "..", "shared", "data")
 sys.path.insert(0, here)
-from picture_views import white_view  # noqa: E402
+from picture_views import middle_clip, white_view  # noqa: E402
 
 
 def picture(image_path, edge, out_name, background=None, view_up=(0, 0, 1), direction=(1, -1, 0.6),
@@ -34,13 +34,7 @@ def picture(image_path, edge, out_name, background=None, view_up=(0, 0, 1), dire
         if background is not None:
             lattice.BackgroundLabels = background
     lattice.UpdatePipeline()
-    bounds = lattice.GetDataInformation().GetBounds()
-    centre = [(bounds[2 * a] + bounds[2 * a + 1]) / 2 for a in range(3)]
-    clip = Clip(Input=lattice)
-    clip.ClipType = "Plane"
-    clip.ClipType.Origin = centre
-    clip.ClipType.Normal = [1, 0, 0]
-    clip.Crinkleclip = 1  # whole tets, as in the paper's cross-sections
+    clip, centre, bounds = middle_clip(lattice)
     view = white_view([900, 700])
     for name in ("Label", "RefinementLevel"):  # bars of earlier pictures
         HideScalarBarIfNotNeeded(GetColorTransferFunction(name), view)

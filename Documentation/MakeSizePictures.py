@@ -12,6 +12,9 @@ plugin = sys.argv[1] if len(sys.argv) > 1 else os.environ["CBC3D_PLUGIN"]
 LoadPlugin(plugin, remote=False, ns=globals())
 here = os.path.dirname(os.path.abspath(__file__))
 head = os.path.join(here, "..", "..", "shared", "data", "nyhead-6tissue-1mm.nii.gz")
+sys.path.insert(0, here)
+from picture_views import middle_clip, white  # noqa: E402
+
 if not os.path.exists(head):
     print("skipped: %s is absent" % head)
     sys.exit(0)
@@ -38,24 +41,15 @@ views = []
 for i, budget in enumerate(BUDGETS):
     mesher = CBC3DImageToMesh(Input=image)
     mesher.MaximumNumberOfTets = budget
-    mesher.LatticeSize = 0  # automatic: the budget may make the lattice coarser
+    # Automatic, as on the command line: the budget may make the lattice coarser, and the
+    # boundary distance follows the lattice (the panel fills in the values for no budget).
+    mesher.LatticeSize = 0
+    mesher.BoundaryDistance = 0
     mesher.UpdatePipeline()
     tets = mesher.GetDataInformation().GetNumberOfCells()
-    bounds = mesher.GetDataInformation().GetBounds()
-    centre = [(bounds[2 * a] + bounds[2 * a + 1]) / 2 for a in range(3)]
-    clip = Clip(Input=mesher)
-    clip.ClipType = "Plane"
-    clip.ClipType.Origin = centre
-    clip.ClipType.Normal = [1, 0, 0]
-    clip.Crinkleclip = 1
-    view = CreateView("RenderView")
+    clip, centre, _ = middle_clip(mesher)
+    view = white(CreateView("RenderView"))
     AssignViewToLayout(view=view, layout=layout, hint=CELLS[i])
-    view.OrientationAxesVisibility = 0
-    view.Background = [1, 1, 1]
-    try:
-        view.UseColorPaletteForBackground = 0
-    except AttributeError:
-        pass
     display = Show(clip, view)
     display.SetRepresentationType("Surface With Edges")
     display.EdgeColor = [0.15, 0.15, 0.15]
@@ -68,6 +62,8 @@ for i, budget in enumerate(BUDGETS):
         bar.Title = "tissue"
         bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
         bar.TitleFontSize = bar.LabelFontSize = 16
+        bar.WindowLocation = "Any Location"
+        bar.Position = [0.86, 0.55]
     title = Text(Text="--max-tets %d: %d tets" % (budget, tets))
     text = Show(title, view)
     text.Color = [0.1, 0.1, 0.1]

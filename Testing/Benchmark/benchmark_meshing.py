@@ -601,8 +601,9 @@ def cgal_curve(options, cgal, path, background, work):
 def point_text(point):
     if "error" in point:
         return "failed: " + point["error"]
-    return "%d tets, HD %.2f mm (95%% %.2f), %.2f s" % (
-        point["tetrahedra"], point["hausdorff_mm"], point["hausdorff_95_mm"], point["seconds"])
+    figure = lambda key: "-" if point.get(key) is None else "%.2f" % point[key]
+    return "%d tets, HD %s mm (95%% %s), %s s" % (
+        point["tetrahedra"], figure("hausdorff_mm"), figure("hausdorff_95_mm"), figure("seconds"))
 
 
 def run_curves(options, images, cli, cgal):
@@ -777,8 +778,9 @@ def curve_row(name, mesher, size, p):
         return [name, mesher, size, "skipped: " + p["skipped"]] + [""] * 5
     if "error" in p:
         return [name, mesher, size, "failed: " + p["error"]] + [""] * 5
-    return [name, mesher, size, "%d" % p["tetrahedra"], "%.2f" % p["hausdorff_mm"], "%.2f" % p["hausdorff_95_mm"],
-            "%.2f" % p["mean_distance_mm"], "%.2f" % p["seconds"], "%.0f" % p["peak_mb"]]
+    figure = lambda key, form="%.2f": "-" if p.get(key) is None else form % p[key]
+    return [name, mesher, size, "%d" % p["tetrahedra"], figure("hausdorff_mm"), figure("hausdorff_95_mm"),
+            figure("mean_distance_mm"), figure("seconds"), figure("peak_mb", "%.0f")]
 
 
 def main():

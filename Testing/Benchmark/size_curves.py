@@ -8,6 +8,7 @@ its size-factor curve, linearly in log(tets); a budget outside CGAL's range is n
 import math
 
 FIDELITIES = ("0.95", "0.99")
+FIGURES = ("hausdorff_mm", "hausdorff_95_mm", "mean_distance_mm")
 BUDGET_SPENT = "the tet budget is spent"
 
 
@@ -29,7 +30,7 @@ def budget_curve(run, budgets, progress):
 def interpolate(curve, tets, key):
     """The figure `key` of a curve (points with "tetrahedra") at `tets`, linear in log(tets);
     None outside the curve."""
-    ordered = sorted((p["tetrahedra"], p[key]) for p in curve if "tetrahedra" in p and key in p)
+    ordered = sorted((p["tetrahedra"], p[key]) for p in curve if "tetrahedra" in p and p.get(key) is not None)
     for (t0, v0), (t1, v1) in zip(ordered, ordered[1:]):
         if t0 <= tets <= t1 and t1 > t0:
             share = (math.log(tets) - math.log(t0)) / (math.log(t1) - math.log(t0))
@@ -42,10 +43,10 @@ def equal_size_rows(name, ours, theirs):
     cbc3d / CGAL for each; below 1 is cbc3d's lead)."""
     rows = []
     for p in ours:
-        if "tetrahedra" not in p:
+        if "tetrahedra" not in p or any(p.get(key) is None for key in FIGURES):
             continue
         row = [name, "%d" % p["budget"], "%d" % p["tetrahedra"]]
-        for key in ("hausdorff_mm", "hausdorff_95_mm", "mean_distance_mm"):
+        for key in FIGURES:
             cgal = interpolate(theirs, p["tetrahedra"], key)
             row += ["%.2f / %s" % (p[key], "%.2f" % cgal if cgal is not None else "-"),
                     "%.2f" % (p[key] / cgal) if cgal else "-"]
