@@ -37,6 +37,7 @@ layout = CreateLayout("budgets")
 layout.SplitHorizontal(0, 1.0 / 3.0)
 layout.SplitHorizontal(2, 0.5)
 CELLS = (1, 5, 6)  # the layout's three cells, left to right
+LEGEND_SHIFT = -0.5  # of the head's depth: how far the first view looks beside it
 views = []
 for i, budget in enumerate(BUDGETS):
     mesher = CBC3DImageToMesh(Input=image)
@@ -47,7 +48,7 @@ for i, budget in enumerate(BUDGETS):
     mesher.BoundaryDistance = 0
     mesher.UpdatePipeline()
     tets = mesher.GetDataInformation().GetNumberOfCells()
-    clip, centre, _ = middle_clip(mesher)
+    clip, centre, bounds = middle_clip(mesher)
     view = white(CreateView("RenderView"))
     AssignViewToLayout(view=view, layout=layout, hint=CELLS[i])
     display = Show(clip, view)
@@ -56,14 +57,15 @@ for i, budget in enumerate(BUDGETS):
     ColorBy(display, ("CELLS", "Label"))
     lut = GetColorTransferFunction("Label")
     tissue_colours(lut)
-    display.SetScalarBarVisibility(view, i == len(BUDGETS) - 1)
-    if i == len(BUDGETS) - 1:
+    display.SetScalarBarVisibility(view, i == 0)
+    if i == 0:
         bar = GetScalarBar(lut, view)
         bar.Title = "tissue"
         bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
-        bar.TitleFontSize = bar.LabelFontSize = 16
+        bar.TitleFontSize = bar.LabelFontSize = 14
         bar.WindowLocation = "Any Location"
-        bar.Position = [0.86, 0.55]
+        bar.Position = [0.05, 0.3]
+        bar.TextPosition = "Ticks left/bottom, annotations right/top"
     title = Text(Text="--max-tets %d: %d tets" % (budget, tets))
     text = Show(title, view)
     text.Color = [0.1, 0.1, 0.1]
@@ -74,8 +76,14 @@ for i, budget in enumerate(BUDGETS):
     camera.SetPosition(centre[0] + 600, centre[1], centre[2])
     camera.SetViewUp(0, 0, 1)
     view.ResetCamera()
+    camera.Dolly(0.75)
+    if i == 0:  # the first head moves right, leaving room for the legend
+        shift = LEGEND_SHIFT * (bounds[3] - bounds[2])
+        camera.SetFocalPoint(*[centre[0], centre[1] + shift, centre[2]])
+        position = camera.GetPosition()
+        camera.SetPosition(position[0], position[1] + shift, position[2])
     views.append(view)
 # Each view is zoomed to its clip: the same head fills each third.
 out = os.path.join(here, "images", "size-budgets-nyhead.png")
-SaveScreenshot(out, layout, SaveAllViews=1, ImageResolution=[1800, 700])
+SaveScreenshot(out, layout, SaveAllViews=1, ImageResolution=[2100, 760])
 print("wrote", out)
