@@ -198,31 +198,57 @@ int vtkCBC3DAlgorithm::EndOnFailure(const cbc3d::Status& status, vtkUnstructured
   return 0;
 }
 
-void vtkCBC3DAlgorithm::SetTissueMaximumEdgeLength(double label, double length)
+void vtkCBC3DAlgorithm::SetTissueValue(std::map<long long, double>& values, double label, double value)
 {
-  this->TissueMaximumEdgeLength[static_cast<long long>(label)] = length;
+  values[static_cast<long long>(label)] = value;
   this->Modified();
 }
 
-void vtkCBC3DAlgorithm::RemoveAllTissueMaximumEdgeLengths()
+void vtkCBC3DAlgorithm::ClearTissueValues(std::map<long long, double>& values)
 {
-  if (!this->TissueMaximumEdgeLength.empty())
+  if (!values.empty())
   {
-    this->TissueMaximumEdgeLength.clear();
+    values.clear();
     this->Modified();
   }
 }
 
-bool vtkCBC3DAlgorithm::ReadEdgeLimits(const cbc3d::LabelImage& image, cbc3d::EdgeLengthLimits& limits)
+void vtkCBC3DAlgorithm::SetTissueMaximumEdgeLength(double label, double length)
 {
-  limits.All = this->MaximumEdgeLength;
+  this->SetTissueValue(this->TissueMaximumEdgeLength, label, length);
+}
+
+void vtkCBC3DAlgorithm::RemoveAllTissueMaximumEdgeLengths()
+{
+  this->ClearTissueValues(this->TissueMaximumEdgeLength);
+}
+
+void vtkCBC3DAlgorithm::SetTissueFidelity(double label, double fidelity)
+{
+  this->SetTissueValue(this->TissueFidelity, label, fidelity);
+}
+
+void vtkCBC3DAlgorithm::RemoveAllTissueFidelities()
+{
+  this->ClearTissueValues(this->TissueFidelity);
+}
+
+bool vtkCBC3DAlgorithm::ReadTissueCodes(const std::map<long long, double>& byValue,
+  const cbc3d::LabelImage& image, std::map<std::int32_t, double>& byCode)
+{
   std::string error;
-  if (!vtkCBC3DConvert::ToTissueCodes(this->TissueMaximumEdgeLength, image, limits.ByTissue, error))
+  if (!vtkCBC3DConvert::ToTissueCodes(byValue, image, byCode, error))
   {
     vtkErrorMacro(<< error);
     return false;
   }
   return true;
+}
+
+bool vtkCBC3DAlgorithm::ReadEdgeLimits(const cbc3d::LabelImage& image, cbc3d::EdgeLengthLimits& limits)
+{
+  limits.All = this->MaximumEdgeLength;
+  return this->ReadTissueCodes(this->TissueMaximumEdgeLength, image, limits.ByTissue);
 }
 
 void vtkCBC3DAlgorithm::CopySizeControlsTo(vtkCBC3DAlgorithm* stage) const
@@ -232,11 +258,16 @@ void vtkCBC3DAlgorithm::CopySizeControlsTo(vtkCBC3DAlgorithm* stage) const
   stage->RemoveAllTissueMaximumEdgeLengths();
   for (const auto& [label, length] : this->TissueMaximumEdgeLength)
     stage->SetTissueMaximumEdgeLength(static_cast<double>(label), length);
+  stage->RemoveAllTissueFidelities();
+  for (const auto& [label, fidelity] : this->TissueFidelity)
+    stage->SetTissueFidelity(static_cast<double>(label), fidelity);
 }
 
-bool vtkCBC3DAlgorithm::HasEdgeLimits() const
+bool vtkCBC3DAlgorithm::SizeControlsAskForRefinement() const
 {
-  return this->MaximumEdgeLength > 0.0 || !this->TissueMaximumEdgeLength.empty();
+  return this->MaximumEdgeLength > 0.0 || !this->TissueMaximumEdgeLength.empty() ||
+    std::any_of(this->TissueFidelity.begin(), this->TissueFidelity.end(),
+      [](const auto& entry) { return entry.second > 0.0; });
 }
 
 void vtkCBC3DAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
@@ -252,6 +283,10 @@ void vtkCBC3DAlgorithm::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumEdgeLength: " << this->MaximumEdgeLength << " mm";
   for (const auto& [label, length] : this->TissueMaximumEdgeLength)
     os << ", tissue " << label << ": " << length << " mm";
+  os << "\n";
+  os << indent << "TissueFidelity:";
+  for (const auto& [label, fidelity] : this->TissueFidelity)
+    os << " " << label << ": " << fidelity;
   os << "\n";
   os << indent << "MaximumNumberOfTets: " << this->MaximumNumberOfTets << "\n";
 }

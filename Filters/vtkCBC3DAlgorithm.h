@@ -16,9 +16,10 @@
 #include "vtkCBC3DFiltersModule.h" // For export macro
 #include "vtkUnstructuredGridAlgorithm.h"
 
-#include <map>    // For the edge limits of tissues
-#include <memory> // For the shared label image
-#include <vector> // For background labels
+#include <cstdint> // For label codes
+#include <map>     // For the settings of single tissues
+#include <memory>  // For the shared label image
+#include <vector>  // For background labels
 
 class vtkImageData;
 
@@ -70,6 +71,16 @@ public:
   vtkGetMacro(MaximumEdgeLength, double);
   void SetTissueMaximumEdgeLength(double label, double length);
   void RemoveAllTissueMaximumEdgeLengths();
+  ///@}
+
+  ///@{
+  /**
+   * Fidelity targets of single tissues, given by label value, in place of Fidelity, for
+   * Refinement and the one-shot Mesher (the other stages ignore them). A label the image lacks,
+   * or a background label, fails the run with an error naming it.
+   */
+  void SetTissueFidelity(double label, double fidelity);
+  void RemoveAllTissueFidelities();
   ///@}
 
   ///@{
@@ -153,22 +164,30 @@ protected:
 
   int ImagePort;
   bool ImageOptional;
-  /// The edge limits by the image's label codes; false, with vtkErrorMacro, for a label the
-  /// image lacks or a background label.
+  /// Settings by label value as settings by the image's label codes; false, with vtkErrorMacro,
+  /// for a label the image lacks or a background label.
+  bool ReadTissueCodes(const std::map<long long, double>& byValue, const cbc3d::LabelImage& image,
+    std::map<std::int32_t, double>& byCode);
+  /// The edge limits by the image's label codes (ReadTissueCodes).
   bool ReadEdgeLimits(const cbc3d::LabelImage& image, cbc3d::EdgeLengthLimits& limits);
-  /// Gives `stage` this filter's edge limits and tet budget.
+  /// Gives `stage` this filter's edge limits, tissue fidelities and tet budget.
   void CopySizeControlsTo(vtkCBC3DAlgorithm* stage) const;
-  /// Whether any edge limit is set.
-  bool HasEdgeLimits() const;
+  /// Whether an edge limit or a tissue's fidelity above 0 asks for refinement.
+  bool SizeControlsAskForRefinement() const;
 
   double InformationSpacing[3] = { 0.0, 0.0, 0.0 };
   std::vector<vtkTypeInt64> BackgroundLabels = { 0 };
   int NumberOfThreads = 0;
   double MaximumEdgeLength = 0.0;
   std::map<long long, double> TissueMaximumEdgeLength; // label value -> mm
+  std::map<long long, double> TissueFidelity;          // label value -> F
   vtkIdType MaximumNumberOfTets = 0;
 
 private:
+  /// The per-tissue setters' one body: the value of `label` in `values`, then Modified.
+  void SetTissueValue(std::map<long long, double>& values, double label, double value);
+  void ClearTissueValues(std::map<long long, double>& values);
+
   vtkCBC3DAlgorithm(const vtkCBC3DAlgorithm&) = delete;
   void operator=(const vtkCBC3DAlgorithm&) = delete;
 };

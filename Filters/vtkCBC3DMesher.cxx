@@ -73,12 +73,7 @@ int vtkCBC3DMesher::RequestData(
   this->CopySizeControlsTo(lattice);
   this->CopySizeControlsTo(refinement);
   this->CopySizeControlsTo(deformation);
-  bool refine = this->Fidelity > 0.0 || this->HasEdgeLimits();
-  for (const auto& [label, fidelity] : this->TissueFidelity)
-  {
-    refinement->SetTissueFidelity(static_cast<double>(label), fidelity);
-    refine = refine || fidelity > 0.0;
-  }
+  const bool refine = refinement->AsksForRefinement();
   deformation->SetIterations(this->Iterations);
   deformation->SetPattern(this->Pattern);
   deformation->SetTargetPlacement(this->TargetPlacement);
@@ -170,18 +165,6 @@ double vtkCBC3DMesher::GetAutomaticBoundaryDistance() const
   // Refinement takes 3/8 of the lattice's longest edges, its cube edges.
   const double lattice = this->EdgeLength > 0.0 ? this->EdgeLength : this->AutomaticLatticeEdge();
   return lattice > 0.0 ? cbc3d::DefaultBoundaryDistance(lattice) : 0.0;
-}
-
-void vtkCBC3DMesher::SetTissueFidelity(double label, double fidelity)
-{
-  this->TissueFidelity[static_cast<long long>(label)] = fidelity;
-  this->Modified();
-}
-
-void vtkCBC3DMesher::RemoveAllTissueFidelities()
-{
-  this->TissueFidelity.clear();
-  this->Modified();
 }
 
 void vtkCBC3DMesher::PrintSelf(ostream& os, vtkIndent indent)

@@ -17,8 +17,6 @@
 #include "vtkCBC3DAlgorithm.h"
 #include "vtkCBC3DFiltersModule.h" // For export macro
 
-#include <map> // For the per-tissue targets
-
 class VTKCBC3DFILTERS_EXPORT vtkCBC3DMesher : public vtkCBC3DAlgorithm
 {
 public:
@@ -53,13 +51,6 @@ public:
   vtkGetMacro(MinimumEdgeLength, double);
   ///@}
 
-  ///@{
-  /**
-   * Fidelity targets of single tissues, by label value, in place of Fidelity for them.
-   */
-  void SetTissueFidelity(double label, double fidelity);
-  void RemoveAllTissueFidelities();
-  ///@}
 
   ///@{
   /**
@@ -122,7 +113,6 @@ protected:
   double Fidelity = 0.95;
   double BoundaryDistance = 0.0;
   double MinimumEdgeLength = 0.0;
-  std::map<long long, double> TissueFidelity; // label value -> F
   int Iterations = 5;
   int Pattern = 1;
   int TargetPlacement = 1; // vtkCBC3DDeformation::VOXEL_FACE

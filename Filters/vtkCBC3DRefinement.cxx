@@ -85,13 +85,8 @@ int vtkCBC3DRefinement::RequestData(
   params.SoundLabels = this->SoundLabels;
   params.NumberOfThreads = this->NumberOfThreads;
   params.MaximumTets = this->MaximumNumberOfTets;
-  std::string error;
-  if (!vtkCBC3DConvert::ToTissueCodes(this->TissueFidelity, *image, params.FidelityByTissue, error))
-  {
-    vtkErrorMacro(<< error);
-    return 0;
-  }
-  if (!this->ReadEdgeLimits(*image, params.MaximumEdge))
+  if (!this->ReadTissueCodes(this->TissueFidelity, *image, params.FidelityByTissue) ||
+    !this->ReadEdgeLimits(*image, params.MaximumEdge))
   {
     return 0;
   }
@@ -159,21 +154,6 @@ int vtkCBC3DRefinement::RequestData(
     fields->AddArray(array);
   }
   return 1;
-}
-
-void vtkCBC3DRefinement::SetTissueFidelity(double label, double fidelity)
-{
-  this->TissueFidelity[static_cast<long long>(label)] = fidelity;
-  this->Modified();
-}
-
-void vtkCBC3DRefinement::RemoveAllTissueFidelities()
-{
-  if (!this->TissueFidelity.empty())
-  {
-    this->TissueFidelity.clear();
-    this->Modified();
-  }
 }
 
 void vtkCBC3DRefinement::PrintSelf(ostream& os, vtkIndent indent)

@@ -42,8 +42,6 @@
 #include "vtkCBC3DAlgorithm.h"
 #include "vtkCBC3DFiltersModule.h" // For export macro
 
-#include <map> // For the per-tissue targets
-
 class VTKCBC3DFILTERS_EXPORT vtkCBC3DRefinement : public vtkCBC3DAlgorithm
 {
 public:
@@ -69,18 +67,16 @@ public:
   vtkGetMacro(MinimumEdgeLength, double);
   ///@}
 
-  ///@{
   /**
-   * Fidelity targets of single tissues, given by label value, in place of Fidelity for those
-   * tissues. A label the image lacks, or a background label, fails the run with an error naming
-   * it. The edge limits (MaximumEdgeLength, SetTissueMaximumEdgeLength: vtkCBC3DAlgorithm)
-   * are refined to as well; tets holding voxels of a tissue with a limit are refined to it too,
-   * so that sizes grade away from the tissue, and splits for a limit obey only a
-   * MinimumEdgeLength that is set.
+   * Whether the settings ask for any refinement: a fidelity above 0 (for all tissues or one)
+   * or an edge limit. The command line and the Mesher run this stage only then.
    */
-  void SetTissueFidelity(double label, double fidelity);
-  void RemoveAllTissueFidelities();
-  ///@}
+  bool AsksForRefinement() const { return this->Fidelity > 0.0 || this->SizeControlsAskForRefinement(); }
+
+  // The size controls of vtkCBC3DAlgorithm apply: SetTissueFidelity (targets of single
+  // tissues), the edge limits (tets holding voxels of a tissue with a limit are refined to it
+  // too, so that sizes grade away from the tissue; splits for a limit obey only a
+  // MinimumEdgeLength that is set) and MaximumNumberOfTets.
 
   ///@{
   /**
@@ -140,7 +136,6 @@ protected:
   double Fidelity = 0.95;
   double MinimumEdgeLength = 0.0;
   double BoundaryDistance = 0.0;
-  std::map<long long, double> TissueFidelity; // label value -> F
   int MinimumComponentVoxels = 8;
   bool SoundLabels = true;
 

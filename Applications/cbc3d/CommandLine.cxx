@@ -350,11 +350,3 @@ bool ParseCommandLine(int argc, char* argv[], CommandLineOptions& options, std::
   }
   return options.ShowHelp || options.ShowVersion || CheckPositional(positional, options, error);
 }
-
-bool CommandLineOptions::AsksForRefinement() const
-{
-  const auto positive = [](const std::map<long long, double>& values) {
-    return std::any_of(values.begin(), values.end(), [](const auto& entry) { return entry.second > 0.0; });
-  };
-  return this->Fidelity > 0.0 || positive(this->TissueFidelity) || this->MaxEdge > 0.0 || positive(this->TissueMaxEdge);
-}

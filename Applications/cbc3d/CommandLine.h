@@ -31,9 +31,6 @@ struct CommandLineOptions
   bool Quiet = false;
   bool ShowHelp = false;
   bool ShowVersion = false;
-
-  /// Whether refinement runs: a fidelity above 0 or an edge limit asks for it.
-  bool AsksForRefinement() const;
 };
 
 /// Parses argv; false with a one-line message on any unknown option or bad value.

@@ -209,15 +209,15 @@ void ConfigureStages(MeshingStages& stages, vtkImageData* image, const CommandLi
   stages.Lattice->SetInputData(image);
   stages.Lattice->SetEdgeLength(options.BCCSize);
   vtkAlgorithm* last = stages.Lattice;
-  if (options.AsksForRefinement())
+  stages.Refinement->SetFidelity(options.Fidelity);
+  stages.Refinement->SetBoundaryDistance(options.BoundaryDistance);
+  stages.Refinement->SetMinimumEdgeLength(options.MinEdge);
+  for (const auto& [label, fidelity] : options.TissueFidelity)
+    stages.Refinement->SetTissueFidelity(static_cast<double>(label), fidelity);
+  if (stages.Refinement->AsksForRefinement())
   {
     stages.Refinement->SetInputConnection(last->GetOutputPort());
     stages.Refinement->SetImageData(image);
-    stages.Refinement->SetFidelity(options.Fidelity);
-    stages.Refinement->SetBoundaryDistance(options.BoundaryDistance);
-    stages.Refinement->SetMinimumEdgeLength(options.MinEdge);
-    for (const auto& [label, fidelity] : options.TissueFidelity)
-      stages.Refinement->SetTissueFidelity(static_cast<double>(label), fidelity);
     last = stages.Refinement;
   }
   if (options.Iterations > 0)
@@ -252,7 +252,7 @@ vtkUnstructuredGrid* RunStages(
   }
   vtkDataArray* edge = stages.Lattice->GetOutput()->GetFieldData()->GetArray(vtkCBC3DArrayNames::LatticeEdgeLength);
   report.BCCSizeUsed = edge ? edge->GetTuple1(0) : options.BCCSize;
-  if ((options.AsksForRefinement() && !RunStage(stages.Refinement, "refinement", showProgress, report, error)) ||
+  if ((stages.Refinement->AsksForRefinement() && !RunStage(stages.Refinement, "refinement", showProgress, report, error)) ||
     (options.Iterations > 0 && !RunStage(stages.Deformation, "deformation", showProgress, report, error)) ||
     !RunStage(stages.Quality, "quality", showProgress, report, error))
   {

@@ -292,13 +292,7 @@ bool RedGreenMesh::BuildConforming(std::vector<Tet>& tets, std::vector<std::int6
 
 double RedGreenMesh::LongestEdge(std::size_t red) const
 {
-  const Tet& tet = this->RedList[red].Points;
-  double longest = 0.0;
-  for (const auto& edge : TetEdges)
-  {
-    longest = std::max(longest, (this->PointList[tet[edge[0]]] - this->PointList[tet[edge[1]]]).norm());
-  }
-  return longest;
+  return LongestEdgeOf(this->PointList, this->RedList[red].Points);
 }
 
 double RedGreenMesh::ShortestEdge(std::size_t red) const

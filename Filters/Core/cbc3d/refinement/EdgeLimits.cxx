@@ -18,7 +18,7 @@ double TightestLimit(const LabelImage& image, const RefinementParams& params, st
 {
   double limit = 0.0;
   const auto take = [&](std::int32_t tissue) {
-    if (tissue == NoLabel || !image.IsTissue(tissue))
+    if (!IsTissueLabel(image, tissue))
       return;
     const double own = params.MaximumEdge.Of(tissue);
     if (own > 0.0 && (limit == 0.0 || own < limit))
@@ -41,6 +41,10 @@ std::size_t MarkForMaximumEdge(const LabelImage& image, const RefinementParams& 
   const RedGreenMesh& hierarchy, const LabelledMesh& mesh, std::vector<char>& marked)
 {
   std::size_t count = 0;
+  if (!params.MaximumEdge.Any())
+  {
+    return count; // the default: no pass pays for a look at every tet
+  }
   for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
   {
     const std::int64_t red = mesh.Source[t];
@@ -65,7 +69,7 @@ bool SplitOverlongTets(const LabelImage& image, const RefinementParams& params, 
   {
     const std::int32_t label = mesh.Labels[t];
     const auto red = static_cast<std::size_t>(mesh.Source[t]);
-    if (split[red] || label == NoLabel || !image.IsTissue(label) || params.MaximumEdge.Of(label) <= 0.0)
+    if (split[red] || !IsTissueLabel(image, label) || params.MaximumEdge.Of(label) <= 0.0)
       continue;
     if (Longer(hierarchy.LongestEdge(red), params.MaximumEdge.Of(label)) &&
       hierarchy.ShortestEdge(red) / 2.0 >= params.MinimumEdgeLength * (1.0 - 1e-9))
@@ -83,24 +87,17 @@ bool SplitOverlongTets(const LabelImage& image, const RefinementParams& params, 
 }
 
 std::size_t CountOverlongEdges(const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
-  const std::vector<std::int32_t>& labels, const LabelImage& image, const RefinementParams& params,
-  double& excess)
+  const std::vector<std::int32_t>& labels, const LabelImage& image, const RefinementParams& params)
 {
   std::size_t count = 0;
-  excess = 0.0;
+  if (!params.MaximumEdge.Any())
+  {
+    return count;
+  }
   for (std::size_t t = 0; t < tets.size(); ++t)
   {
-    if (labels[t] == NoLabel || !image.IsTissue(labels[t]))
-      continue;
-    const double limit = params.MaximumEdge.Of(labels[t]);
-    if (limit <= 0.0)
-      continue;
-    const double longest = LongestEdgeOf(points, tets[t]);
-    if (Longer(longest, limit))
-    {
-      ++count;
-      excess = std::max(excess, longest - limit);
-    }
+    const double limit = IsTissueLabel(image, labels[t]) ? params.MaximumEdge.Of(labels[t]) : 0.0;
+    count += limit > 0.0 && Longer(LongestEdgeOf(points, tets[t]), limit);
   }
   return count;
 }

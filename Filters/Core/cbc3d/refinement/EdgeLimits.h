@@ -32,10 +32,9 @@ bool SplitOverlongTets(const LabelImage& image, const RefinementParams& params, 
   const LabelledMesh& mesh);
 
 /// The tets (of `tets`, with `labels`) with an edge longer than their tissue's limit allows,
-/// after refinement and the sound labels: the count, and the largest excess (mm) in `excess`.
+/// after refinement and the sound labels.
 std::size_t CountOverlongEdges(const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
-  const std::vector<std::int32_t>& labels, const LabelImage& image, const RefinementParams& params,
-  double& excess);
+  const std::vector<std::int32_t>& labels, const LabelImage& image, const RefinementParams& params);
 } // namespace cbc3d
 
 #endif

@@ -60,7 +60,7 @@ void CountTissueVoxelsInTets(const LabelImage& image, const LabelledMesh& mesh, 
     {
       // Only voxel centres count: each belongs to one tet. Sub-sampled tets hold none.
       const std::int32_t label = mesh.Labels[t];
-      if (mesh.HoldsVoxelCentres[t] && label != NoLabel && image.IsTissue(label))
+      if (mesh.HoldsVoxelCentres[t] && IsTissueLabel(image, label))
       {
         errors.Run([&] {
           auto& entry = local[label];

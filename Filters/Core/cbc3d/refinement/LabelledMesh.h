@@ -18,6 +18,12 @@ namespace cbc3d
 // A tet that holds no sample at all (outside the image) has no label.
 constexpr std::int32_t NoLabel = std::numeric_limits<std::int32_t>::min();
 
+/// Whether a pass's label is a tissue of the image (not NoLabel, not background).
+inline bool IsTissueLabel(const LabelImage& image, std::int32_t label)
+{
+  return label != NoLabel && image.IsTissue(label);
+}
+
 // One pass's view of the conforming mesh: tets, their red leaves, samples and labels.
 struct LabelledMesh
 {

@@ -161,7 +161,7 @@ void KeepTissueTets(const LabelImage& image, const RedGreenMesh& hierarchy, cons
   for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
   {
     const std::int32_t label = mesh.Labels[t];
-    if (label == NoLabel || !image.IsTissue(label))
+    if (!IsTissueLabel(image, label))
     {
       continue;
     }
@@ -334,33 +334,18 @@ bool SplitOnePass(const LabelImage& image, const TissueComponents& components, c
   return true;
 }
 
-// One refinement from the lattice, the passes aiming at `budgetAim` of the tet budget.
-Status RefineToAim(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params,
-  double budgetAim, TetMesh& out, RefinementResult& result, const Progress& progress)
+// One refinement of the (ringed) lattice, the passes aiming at `budgetAim` of the tet budget.
+Status RefineToAim(const LabelImage& image, const TissueComponents& components, const TetMesh& ringed,
+  const RefinementParams& params, double budgetAim, TetMesh& out, RefinementResult& result,
+  const Progress& progress)
 {
   out = TetMesh();
   result = RefinementResult();
-  const Status valid = ValidateInputs(image, lattice, params);
-  if (!valid.IsOk())
-  {
-    return valid;
-  }
   const double minimumEdge = params.MinimumEdgeLength > 0.0
     ? params.MinimumEdgeLength
     : DefaultMinimumEdgeLength(image.Spacing);
   const std::size_t memoryLimit =
     params.MemoryLimitBytes > 0 ? params.MemoryLimitBytes : PhysicalMemoryBytes() / 2;
-
-  const TissueComponents components = FindTissueComponents(image);
-  const Status present = CheckTissuesPresent(components, params);
-  if (!present.IsOk())
-  {
-    return present;
-  }
-  // Sound labels need background on both sides of a thin sheet of tissue to thicken it into.
-  TetMesh ringed = lattice;
-  if (params.SoundLabels)
-    AddBackgroundRing(image, ringed);
   RedGreenMesh hierarchy(ringed);
   const std::unique_ptr<BoundaryCoverage> coverage = MakeCoverage(image, components, params, hierarchy, result);
   LabelledMesh mesh;
@@ -406,7 +391,7 @@ Status RefineToAim(const LabelImage& image, const TetMesh& lattice, const Refine
     // Spikes on the surface would keep their tips off the image boundary through deformation.
     const auto across = FaceNeighbours(mesh.Tets, hierarchy.Points().size(), params.NumberOfThreads);
     if (RemoveSurfaceEars(mesh.Tets, across, hierarchy.Points().size(), mesh.Labels,
-          [&](std::int32_t label) { return label != NoLabel && image.IsTissue(label); }, NoLabel) > 0)
+          [&](std::int32_t label) { return IsTissueLabel(image, label); }, NoLabel) > 0)
     {
       fidelity = MeasureFidelity(
         image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
@@ -415,8 +400,7 @@ Status RefineToAim(const LabelImage& image, const TetMesh& lattice, const Refine
     fidelity = KeepComponentsAndMakeSound(image, components, params, hierarchy.Points(), across, mesh, componentInMesh,
       result.Relabelled);
 
-    result.OverlongTets = CountOverlongEdges(hierarchy.Points(), mesh.Tets, mesh.Labels, image, params,
-      result.LargestEdgeExcess);
+    result.OverlongTets = CountOverlongEdges(hierarchy.Points(), mesh.Tets, mesh.Labels, image, params);
     // Tets that making the labels sound gave to a tissue may pass its edge limit: split them and
     // refine again, from a fresh sampling (the owners are renumbered by now).
     if (result.OverlongTets == 0 || round == EdgeLimitRounds ||
@@ -458,12 +442,30 @@ bool RefinementParams::AsksForRefinement() const
 Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const RefinementParams& params,
   TetMesh& out, RefinementResult& result, const Progress& progress)
 {
+  out = TetMesh();
+  result = RefinementResult();
+  const Status valid = ValidateInputs(image, lattice, params);
+  if (!valid.IsOk())
+  {
+    return valid;
+  }
+  const TissueComponents components = FindTissueComponents(image);
+  const Status present = CheckTissuesPresent(components, params);
+  if (!present.IsOk())
+  {
+    return present;
+  }
+  // Sound labels need background on both sides of a thin sheet of tissue to thicken it into.
+  TetMesh ringed = lattice;
+  if (params.SoundLabels)
+    AddBackgroundRing(image, ringed);
   // Making the labels sound after the passes moves the count, most on coarse meshes: where the
-  // mesh passes the budget, refinement starts again aiming lower by the share it went over.
+  // mesh passes the budget, refinement starts again from the same lattice and components,
+  // aiming lower by the share it went over.
   double aim = BudgetAim;
   for (int attempt = 0;; ++attempt)
   {
-    const Status status = RefineToAim(image, lattice, params, aim, out, result, progress);
+    const Status status = RefineToAim(image, components, ringed, params, aim, out, result, progress);
     const auto tets = static_cast<std::int64_t>(out.Tets.size());
     if (!status.IsOk() || params.MaximumTets <= 0 || tets <= params.MaximumTets || attempt == BudgetAttempts)
     {

@@ -88,7 +88,6 @@ struct RefinementResult
   std::vector<std::uint8_t> Levels;    // red level of every output tet
   std::string StopReason;              // why refinement ended, in words
   std::size_t OverlongTets = 0;        // tissue tets with an edge beyond their limit (mm)
-  double LargestEdgeExcess = 0.0;      // the most such an edge passes its limit by (mm)
 };
 
 /// Red-green refinement of a tet mesh (normally the BCC lattice) driven by voxel fidelity

@@ -73,7 +73,7 @@ std::size_t TetBudget::Keep(const LabelImage& image, const LabelledMesh& mesh, c
   std::int64_t tissueNow = 0, markedTets = 0, markedTissue = 0;
   for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
   {
-    const bool tissue = mesh.Labels[t] != NoLabel && image.IsTissue(mesh.Labels[t]);
+    const bool tissue = IsTissueLabel(image, mesh.Labels[t]);
     tissueNow += tissue;
     if (marked[static_cast<std::size_t>(mesh.Source[t])])
     {
@@ -82,8 +82,8 @@ std::size_t TetBudget::Keep(const LabelImage& image, const LabelledMesh& mesh, c
     }
   }
   const double newShare = markedTets > 0 ? std::max(0.05, double(markedTissue) / double(markedTets)) : 1.0;
-  const double allowed = double(mesh.Tets.size()) + double(this->Target - tissueNow) / newShare;
   const double now = double(mesh.Tets.size());
+  const double allowed = now + double(this->Target - tissueNow) / newShare;
   if (allowed - now < CloseEnough * allowed)
   {
     // Not even a few more tets fit: the budget is spent.
