@@ -53,6 +53,10 @@ def main():
     if len(arguments) != 2:
         print(__doc__)
         return 2
+    missing = [cli for cli in arguments if not os.access(cli, os.X_OK)]
+    if missing:
+        print("same_meshes: no cbc3d command at %s" % ", ".join(missing))
+        return 2
     if not os.path.isdir(SHARED):
         print("same_meshes: skipped, %s is absent" % SHARED)
         return 0
