@@ -138,10 +138,10 @@ int vtkCBC3DNIfTIReader::CanReadFile(const char* filename)
   return this->Reader->CanReadFile(filename);
 }
 
-bool vtkCBC3DNIfTIReader::RunReader(bool data)
+bool vtkCBC3DNIfTIReader::RunReader(const int* extent)
 {
   ReaderMessages messages;
-  messages.Owner = data ? this : nullptr;
+  messages.Owner = extent ? this : nullptr;
   vtkNew<vtkCallbackCommand> callback;
   callback->SetCallback(CollectMessage);
   callback->SetClientData(&messages);
@@ -158,7 +158,7 @@ bool vtkCBC3DNIfTIReader::RunReader(bool data)
   int ok = 0;
   if (sddp)
   {
-    ok = data ? sddp->UpdateWholeExtent() : sddp->UpdateInformation();
+    ok = extent ? this->Reader->UpdateExtent(extent) : sddp->UpdateInformation();
   }
 
   this->Reader->RemoveObserver(readerErrors);
@@ -275,7 +275,7 @@ int vtkCBC3DNIfTIReader::RequestInformation(
   }
 
   this->Reader->SetFileName(this->FileName);
-  if (!this->RunReader(false) || !this->VoxelsFitInFile() || !this->ComputeFrame())
+  if (!this->RunReader(nullptr) || !this->VoxelsFitInFile() || !this->ComputeFrame())
   {
     return 0;
   }
@@ -285,6 +285,8 @@ int vtkCBC3DNIfTIReader::RequestInformation(
   int extent[6];
   readerInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  // Any sub-extent can be read: a parallel pipeline then gives each rank only its piece.
+  outInfo->Set(vtkAlgorithm::CAN_PRODUCE_SUB_EXTENT(), 1);
   outInfo->Set(vtkDataObject::SPACING(), this->Spacing, 3);
   outInfo->Set(vtkDataObject::ORIGIN(), this->Origin, 3);
   outInfo->Set(vtkDataObject::DIRECTION(), this->Direction, 9);
@@ -293,36 +295,68 @@ int vtkCBC3DNIfTIReader::RequestInformation(
   return 1;
 }
 
-bool vtkCBC3DNIfTIReader::ReadVoxels(vtkImageData* output)
+bool vtkCBC3DNIfTIReader::ReadVoxels(vtkImageData* output, const int extent[6])
 {
   this->InflatedAtOnce = false;
-  int extent[6];
-  this->Reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
-  const vtkIdType voxels = vtkIdType(extent[1] - extent[0] + 1) * (extent[3] - extent[2] + 1) * (extent[5] - extent[4] + 1);
-  if (this->Reader->GetNumberOfScalarComponents() == 1)
+  this->InflatedSubExtent = false;
+  const int scalarType = this->Reader->GetDataScalarType();
+  if (extent[1] < extent[0] || extent[3] < extent[2] || extent[5] < extent[4])
   {
-    if (vtkSmartPointer<vtkDataArray> inflated =
-          InflateNIfTIVoxels(this->FileName, this->Reader->GetDataScalarType(), voxels))
+    // An empty piece (more pieces than the image splits into): no voxels, but the array.
+    vtkSmartPointer<vtkDataArray> none = vtkSmartPointer<vtkDataArray>::Take(vtkDataArray::CreateDataArray(scalarType));
+    none->SetNumberOfComponents(this->Reader->GetNumberOfScalarComponents());
+    none->SetName("NIFTI");
+    output->SetExtent(const_cast<int*>(extent));
+    output->GetPointData()->SetScalars(none);
+    return true;
+  }
+  int whole[6];
+  this->Reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  // InflateNIfTIVoxels keeps the file's slice order: only for images VTK does not reverse.
+  if (this->Reader->GetNumberOfScalarComponents() == 1 && this->Reader->GetQFac() > 0)
+  {
+    if (vtkSmartPointer<vtkDataArray> inflated = InflateNIfTIVoxels(this->FileName, scalarType, whole, extent))
     {
       inflated->SetName("NIFTI"); // vtkNIFTIImageReader's name for them
-      output->SetExtent(extent);
+      output->SetExtent(const_cast<int*>(extent));
       output->GetPointData()->SetScalars(inflated);
-      this->InflatedAtOnce = true;
+      this->InflatedAtOnce = std::equal(extent, extent + 6, whole);
+      this->InflatedSubExtent = !this->InflatedAtOnce;
       this->UpdateProgress(1.0);
       return true;
     }
   }
-  if (!this->RunReader(true))
+  return this->ReadVoxelsWithReader(output, extent);
+}
+
+bool vtkCBC3DNIfTIReader::ReadVoxelsWithReader(vtkImageData* output, const int extent[6])
+{
+  int whole[6], asked[6];
+  this->Reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  std::copy(extent, extent + 6, asked);
+  if (this->Reader->GetQFac() < 0)
+  {
+    // Where it reverses the slices, vtkNIFTIImageReader reverses them within the part it reads:
+    // the mirrored part holds our slices in our order, at indices shifted by a constant.
+    asked[4] = whole[4] + whole[5] - extent[5];
+    asked[5] = whole[4] + whole[5] - extent[4];
+  }
+  if (!this->RunReader(asked))
   {
     return false;
   }
   vtkImageData* image = this->Reader->GetOutput();
-  if (!image->GetPointData()->GetScalars())
+  int read[6];
+  image->GetExtent(read);
+  if (!image->GetPointData()->GetScalars() || !std::equal(read, read + 6, asked))
   {
     vtkErrorMacro(<< "Cannot read NIfTI file " << this->FileName << ": no voxel values read");
     return false;
   }
   output->ShallowCopy(image);
+  output->SetExtent(const_cast<int*>(extent));
+  // The voxels are ours alone now, and the next request reads afresh the part it asks.
+  image->ReleaseData();
   return true;
 }
 
@@ -335,7 +369,21 @@ int vtkCBC3DNIfTIReader::RequestData(
   {
     return 0; // RequestInformation failed and said why
   }
-  if (!this->ReadVoxels(output))
+  // The asked extent, clamped to the image; the whole image where none is asked.
+  int extent[6];
+  this->Reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT()))
+  {
+    int asked[6];
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), asked);
+    for (int a = 0; a < 3; ++a)
+    {
+      extent[2 * a] = std::max(extent[2 * a], asked[2 * a]);
+      extent[2 * a + 1] = std::min(extent[2 * a + 1], asked[2 * a + 1]);
+    }
+  }
+  if (!this->ReadVoxels(output, extent))
   {
     return 0;
   }
@@ -358,6 +406,7 @@ void vtkCBC3DNIfTIReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FrameSource: " << (this->FrameSource.empty() ? "(none)" : this->FrameSource)
      << "\n";
   os << indent << "InflatedAtOnce: " << this->InflatedAtOnce << "\n";
+  os << indent << "InflatedSubExtent: " << this->InflatedSubExtent << "\n";
   os << indent << "Origin: " << this->Origin[0] << " " << this->Origin[1] << " "
      << this->Origin[2] << "\n";
   os << indent << "Spacing: " << this->Spacing[0] << " " << this->Spacing[1] << " "

@@ -29,6 +29,13 @@
  * gives them ("NIFTI"; an unnamed array is named "Labels"), as the active scalars. Values are
  * not rescaled by scl_slope/scl_inter. Only the first volume of a 4-D file is read.
  *
+ * Pieces: the reader produces the update extent it is asked for (clamped to the whole extent),
+ * so each rank of a parallel pipeline reads and holds only its part of the image, with the
+ * voxel values a whole read has at the same indices. A part of a .nii.gz is inflated as a
+ * stream, keeping only the bytes of the asked slices; the stream is read up to the part's last
+ * slice, so a rank reading the last slab inflates (without keeping) the slices before it, and
+ * damage to the stream after a part's last slice goes unseen by that read.
+ *
  * @warning A missing or unreadable file, or one that is not NIfTI, is reported with
  * vtkErrorMacro (one line naming the file) and the request fails; so is a header with a
  * datatype code NIfTI does not define, an axis of no voxels, or more voxels than its file could
@@ -73,11 +80,20 @@ public:
   const char* GetFrameSource() const { return this->FrameSource.c_str(); }
 
   /**
-   * Whether the last image's voxels were inflated in one piece (a single-file NIfTI-1
-   * .nii.gz of one volume, stored with qfac +1; libdeflate, an order of magnitude faster than
-   * zlib's streaming there) rather than read by vtkNIFTIImageReader. The voxels are the same.
+   * Whether the last image's voxels were inflated in one piece (the whole image of a
+   * single-file NIfTI-1 .nii.gz of one volume whose slices VTK keeps in the file's order: qfac
+   * +1, and no sform of negative determinant without a qform; libdeflate, an order of magnitude
+   * faster than zlib's streaming there) rather than read by vtkNIFTIImageReader. The voxels are
+   * the same.
    */
   vtkGetMacro(InflatedAtOnce, bool);
+
+  /**
+   * Whether the last read, of a part of a file that InflatedAtOnce would take whole, streamed
+   * the file through zlib and kept only the part's voxels, rather than leaving the part to
+   * vtkNIFTIImageReader. The voxels are the same.
+   */
+  vtkGetMacro(InflatedSubExtent, bool);
 
 protected:
   vtkCBC3DNIfTIReader();
@@ -91,6 +107,7 @@ protected:
   char* FileName = nullptr;
   std::string FrameSource;
   bool InflatedAtOnce = false;
+  bool InflatedSubExtent = false;
   double Origin[3] = { 0.0, 0.0, 0.0 };
   double Spacing[3] = { 1.0, 1.0, 1.0 };
   double Direction[9] = { 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0 };
@@ -100,12 +117,15 @@ private:
   vtkCBC3DNIfTIReader(const vtkCBC3DNIfTIReader&) = delete;
   void operator=(const vtkCBC3DNIfTIReader&) = delete;
 
-  // Run the inner reader's pass (information or data), turning its errors into one line of
-  // ours that names the file; warnings are passed on. False on failure.
-  bool RunReader(bool data);
-  // The voxels into `output`: a single-file .nii.gz inflated at once (InflateNIfTIVoxels),
-  // anything else by vtkNIFTIImageReader.
-  bool ReadVoxels(vtkImageData* output);
+  // Run the inner reader's pass: information (extent null) or the data of `extent`, turning
+  // its errors into one line of ours that names the file; warnings are passed on. False on
+  // failure.
+  bool RunReader(const int* extent);
+  // The voxels of `extent` (within the whole extent) into `output`: a single-file .nii.gz by
+  // InflateNIfTIVoxels, anything else by vtkNIFTIImageReader.
+  bool ReadVoxels(vtkImageData* output, const int extent[6]);
+  // The same from vtkNIFTIImageReader.
+  bool ReadVoxelsWithReader(vtkImageData* output, const int extent[6]);
   bool ComputeFrame();
   // False, with an error, when the header gives an axis no voxels, or claims more voxel bytes
   // than the file could hold even compressed: the inner reader would read into an empty image,

@@ -1,5 +1,5 @@
 // libFuzzer target: vtkCBC3DNIfTIReader on arbitrary bytes, then the label-image conversion the
-// filters and the cbc3d command apply to what it reads. The bytes go through a temporary file
+// filters and the cbc3d command apply to what it reads, then parts of the image. The bytes go through a temporary file
 // (vtkNIFTIImageReader reads files only), named .nii.gz when they start with gzip's magic
 // number so that the compressed path is fuzzed too. Errors are expected; crashes, leaks and
 // undefined behaviour are not.
@@ -45,6 +45,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::string error;
     vtkCBC3DConvert::ToLabelImage(
       image, vtkCBC3DConvert::ChooseLabelArray(nullptr, image), { 0 }, labels, error);
+    // Parts too, as a parallel pipeline asks them (a .nii.gz's are streamed): the upper half
+    // slab, then a box cropped in x as well.
+    int part[6];
+    image->GetExtent(part);
+    part[4] = (part[4] + part[5] + 1) / 2;
+    reader->UpdateExtent(part);
+    part[0] = (part[0] + part[1] + 1) / 2;
+    reader->UpdateExtent(part);
   }
   std::remove(path.c_str());
   return 0;
