@@ -19,6 +19,12 @@
  * lattice cube edge used (the automatic choice when EdgeLength is 0).
  *
  * Point data (vtkCBC3DDeformation): `Displacement` (vtkDoubleArray, 3 components, mm).
+ *
+ * Over MPI ranks (vtkCBC3DMesher): point data `GlobalIds` (vtkIdTypeArray, the point
+ * attribute GLOBALIDS): each point's place in the whole image's lattice, the same on every
+ * rank that holds the point; cell data `vtkGhostType` where ghost levels are asked for. Image
+ * field data `LatticeBox` (vtkIntArray, 6 values: lower x y z, upper x y z, in the whole image's
+ * structured indices): the whole image's tissue box, which a rank's piece frames its lattice on.
  * Field data (vtkCBC3DDeformation): `DeformationIterations`, `DeformationStopReason`,
  * `DeformationSources`, `DeformationTargets`.
  *
@@ -57,6 +63,8 @@ constexpr const char* SurfaceId = "SurfaceId";
 constexpr const char* MinDihedralAngle = "MinDihedralAngle";
 constexpr const char* MaxDihedralAngle = "MaxDihedralAngle";
 constexpr const char* LatticeEdgeLength = "LatticeEdgeLength";
+constexpr const char* LatticeBox = "LatticeBox";
+constexpr const char* GlobalIds = "GlobalIds";
 constexpr const char* RefinementLevel = "RefinementLevel";
 constexpr const char* RefinementPasses = "RefinementPasses";
 constexpr const char* RefinementStopReason = "RefinementStopReason";

@@ -8,6 +8,7 @@
 #include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
@@ -80,6 +81,34 @@ bool StoreLabels(vtkDataArray* labels, std::array<int, 3> lower, std::array<int,
     return false;
   }
   cbc3d::IndexLabelRuns(out, threads);
+  return true;
+}
+} // namespace
+
+namespace
+{
+// A rank's piece carries the whole image's tissue box (LatticeBox field data, structured
+// indices); the core takes it in the piece's own indices.
+bool ReadLatticeBox(vtkImageData* image, const int extent[6], cbc3d::LabelImage& out, std::string& error)
+{
+  vtkDataArray* box = image->GetFieldData()->GetArray(vtkCBC3DArrayNames::LatticeBox);
+  if (!box)
+  {
+    return true;
+  }
+  if (box->GetNumberOfValues() != 6)
+  {
+    error = "the image's LatticeBox field array must hold 6 values (lower x y z, upper x y z)";
+    return false;
+  }
+  const int components = box->GetNumberOfComponents();
+  auto value = [&](int i) { return int(box->GetComponent(i / components, i % components)); };
+  for (int a = 0; a < 3; ++a)
+  {
+    out.LatticeBoxLower[a] = value(a) - extent[2 * a];
+    out.LatticeBoxUpper[a] = value(3 + a) - extent[2 * a];
+  }
+  out.HasLatticeBox = true;
   return true;
 }
 } // namespace
@@ -167,6 +196,10 @@ bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   if (!StoreLabels(labels, lower, upper, out, threads))
   {
     error = "internal error: an image value found no label code";
+    return false;
+  }
+  if (!ReadLatticeBox(image, extent, out, error))
+  {
     return false;
   }
   const cbc3d::Status valid = cbc3d::ValidateLabelImage(out);

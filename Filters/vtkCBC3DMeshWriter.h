@@ -46,6 +46,10 @@ public:
   vtkGetMacro(OutsideLabel, vtkTypeInt64);
   ///@}
 
+  /// Under MPI, asks upstream for this rank's piece (WriteData gathers the pieces).
+  vtkTypeBool ProcessRequest(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+
 protected:
   vtkCBC3DMeshWriter() = default;
   ~vtkCBC3DMeshWriter() override;

@@ -2,19 +2,32 @@
 
 #include "vtkCBC3DBCCLattice.h"
 #include "vtkCBC3DDeformation.h"
+#include "vtkCBC3DArrayNames.h"
+#include "vtkCBC3DConvert.h"
 #include "vtkCBC3DMeshQuality.h"
+#include "vtkCBC3DPieces.h"
 #include "vtkCBC3DRefinement.h"
+#include "vtkCBC3DSeams.h"
 
 #include "cbc3d/refinement/Refinement.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkUnstructuredGrid.h>
+
+#include <algorithm>
 
 #include <string>
 #include <vector>
@@ -53,7 +66,146 @@ public:
   }
   std::string Message;
 };
+
+// A stage of the mesher and its share of the progress bar.
+struct Stage
+{
+  vtkCBC3DAlgorithm* Filter;
+  const char* Name;
+  double Share;
+};
 } // namespace
+
+struct vtkCBC3DMesher::Piece
+{
+  vtkMultiProcessController* Controller = nullptr;
+  vtkCBC3DPieces::SlabPlan Plan;
+  int WholeLower[3] = { 0, 0, 0 };
+  int WholeUpper[3] = { -1, -1, -1 };
+  bool HasTissue = false;
+  std::vector<std::int64_t> CutKeys;
+  vtkCBC3DSeams::SeamReport Seams;
+};
+
+namespace
+{
+// The MPI controller where the pipeline asks for one piece per rank; null for a serial run.
+vtkMultiProcessController* RankController(vtkInformation* outInfo)
+{
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const int pieces = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
+  return controller && pieces > 1 && controller->GetNumberOfProcesses() == pieces ? controller : nullptr;
+}
+} // namespace
+
+int vtkCBC3DMesher::RequestInformation(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestInformation(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
+int vtkCBC3DMesher::RequestUpdateExtent(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkInformation* inInfo = inputVector[0]->GetInformationObject(0);
+  int whole[6], extent[6];
+  inInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  std::copy(whole, whole + 6, extent);
+  vtkMultiProcessController* controller = RankController(outInfo);
+  const double h = this->EdgeLength > 0.0 ? this->EdgeLength : this->AutomaticLatticeEdge();
+  if (controller && h > 0.0)
+  {
+    // The slab and its halo only: a rank never asks for the whole image.
+    const vtkCBC3DPieces::SlabPlan plan = vtkCBC3DPieces::PlanSlabs(whole, this->InformationSpacing, h,
+      this->RankHalo, controller->GetNumberOfProcesses(), controller->GetLocalProcessId());
+    vtkCBC3DPieces::PieceExtent(plan, whole, extent);
+  }
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
+  // The slab is asked for by extent, not as a piece: a reader that can only give the whole
+  // image gives it on every rank (not on the first alone), and the executive crops it.
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+  return 1;
+}
+
+bool vtkCBC3DMesher::PreparePiece(vtkImageData* image, vtkInformation* inputInfo, Piece& piece)
+{
+  const bool first = piece.Controller->GetLocalProcessId() == 0;
+  if (this->MaximumNumberOfTets > 0)
+  {
+    if (first)
+    {
+      vtkErrorMacro(<< "a tet budget (MaximumNumberOfTets) needs the whole mesh on one process; over MPI "
+                    << "ranks give a lattice edge length instead");
+    }
+    return false;
+  }
+  if (this->Iterations > 0)
+  {
+    // Each rank deforming its piece alone moves the points on both sides of a border apart by
+    // up to millimetres (the elastic solve spans the whole mesh), which leaves flat tets at the
+    // borders: refuse rather than write them.
+    if (first)
+    {
+      vtkErrorMacro(<< "deformation across MPI ranks is not available yet: set Iterations (Deformation "
+                    << "Iterations) to 0 for the refined lattice, or mesh on one process");
+    }
+    return false;
+  }
+  int whole[6];
+  inputInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+  const double h = this->EdgeLength > 0.0 ? this->EdgeLength : this->AutomaticLatticeEdge();
+  piece.Plan = vtkCBC3DPieces::PlanSlabs(whole, image->GetSpacing(), h, this->RankHalo,
+    piece.Controller->GetNumberOfProcesses(), piece.Controller->GetLocalProcessId());
+  vtkDataArray* labels = vtkCBC3DConvert::ChooseLabelArray(this->GetInputArrayInformation(0), image);
+  int lower[3], upper[3];
+  piece.HasTissue = labels && vtkCBC3DPieces::TissueBox(image, labels, this->BackgroundLabels, lower, upper);
+  if (!vtkCBC3DPieces::AgreeOnTissueBox(
+        piece.Controller, piece.HasTissue, lower, upper, piece.WholeLower, piece.WholeUpper))
+  {
+    if (first)
+    {
+      vtkErrorMacro(<< "the image has no tissue: every voxel holds a background label");
+    }
+    return false;
+  }
+  // Every rank frames its lattice on the whole image's tissue box (vtkCBC3DConvert reads it).
+  vtkNew<vtkIntArray> box;
+  box->SetName(vtkCBC3DArrayNames::LatticeBox);
+  for (const int* bound : { piece.WholeLower, piece.WholeUpper })
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      box->InsertNextValue(bound[a]);
+    }
+  }
+  vtkNew<vtkFieldData> fields;
+  fields->ShallowCopy(image->GetFieldData());
+  fields->AddArray(box);
+  image->SetFieldData(fields);
+  return true;
+}
+
+bool vtkCBC3DMesher::FinishStage(vtkAlgorithm*, const char* name, const std::string& error, Piece* piece)
+{
+  if (!error.empty())
+  {
+    // Keep the stage's own words: VTK formats "... Class (0x...): message".
+    const std::size_t marker = error.find("): ");
+    vtkErrorMacro(<< name << ": " << (marker == std::string::npos ? error : error.substr(marker + 3)));
+  }
+  // A rank that failed stops every rank, here and not in a later exchange that would wait.
+  return piece ? vtkCBC3DPieces::AllAgree(piece->Controller, error.empty()) : error.empty();
+}
 
 int vtkCBC3DMesher::RequestData(
   vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
@@ -61,7 +213,24 @@ int vtkCBC3DMesher::RequestData(
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector);
   vtkNew<vtkImageData> image;
   image->ShallowCopy(vtkImageData::GetData(inputVector[0]));
+  Piece piece;
+  piece.Controller = RankController(outputVector->GetInformationObject(0));
+  if (piece.Controller && !this->PreparePiece(image, inputVector[0]->GetInformationObject(0), piece))
+  {
+    output->Initialize();
+    return 0;
+  }
+  const bool done = this->RunStages(image, piece.Controller ? &piece : nullptr, output);
+  this->SetProgressText(nullptr);
+  if (!done)
+  {
+    output->Initialize();
+  }
+  return done ? 1 : 0;
+}
 
+bool vtkCBC3DMesher::RunStages(vtkImageData* image, Piece* piece, vtkUnstructuredGrid* output)
+{
   vtkNew<vtkCBC3DBCCLattice> lattice;
   vtkNew<vtkCBC3DRefinement> refinement;
   vtkNew<vtkCBC3DDeformation> deformation;
@@ -73,7 +242,6 @@ int vtkCBC3DMesher::RequestData(
   this->CopySizeControlsTo(lattice);
   this->CopySizeControlsTo(refinement);
   this->CopySizeControlsTo(deformation);
-  const bool refine = refinement->AsksForRefinement();
   deformation->SetIterations(this->Iterations);
   deformation->SetPattern(this->Pattern);
   deformation->SetTargetPlacement(this->TargetPlacement);
@@ -83,15 +251,8 @@ int vtkCBC3DMesher::RequestData(
     ? arrayRequest->Get(vtkDataObject::FIELD_NAME())
     : nullptr;
 
-  // The stages in order, with their share of the progress bar.
-  struct Stage
-  {
-    vtkCBC3DAlgorithm* Filter;
-    const char* Name;
-    double Share;
-  };
   std::vector<Stage> stages = { { lattice, "BCC lattice", 0.15 } };
-  if (refine)
+  if (refinement->AsksForRefinement())
   {
     stages.push_back({ refinement, "Red-green refinement", 0.25 });
   }
@@ -100,64 +261,135 @@ int vtkCBC3DMesher::RequestData(
     stages.push_back({ deformation, "Deformation", 0.5 });
   }
   stages.push_back({ quality, "Quality", 0.1 });
+  // Over ranks, the lattice points get their global ids before deformation moves them, and the
+  // rank keeps its own tets before their quality is measured.
+  const std::size_t namedStage = stages.size() - (this->Iterations > 0 ? 3 : 2);
 
-  vtkAlgorithm* previous = nullptr;
+  bool meshes = !piece || piece->HasTissue;
+  vtkSmartPointer<vtkUnstructuredGrid> current = vtkSmartPointer<vtkUnstructuredGrid>::New();
   double shift = 0.0, total = 0.0;
   for (const Stage& stage : stages)
   {
     total += stage.Share;
   }
-  for (const Stage& stage : stages)
+  for (std::size_t s = 0; s < stages.size(); ++s)
   {
-    vtkCBC3DAlgorithm* filter = stage.Filter;
-    filter->RemoveAllBackgroundLabels();
-    for (const vtkTypeInt64 label : this->BackgroundLabels)
+    vtkCBC3DAlgorithm* filter = stages[s].Filter;
+    this->PrepareStage(filter, arrayName, s > 0);
+    if (s > 0)
     {
-      filter->AddBackgroundLabel(label);
-    }
-    filter->SetNumberOfThreads(this->NumberOfThreads);
-    if (arrayName && *arrayName)
-    {
-      filter->SetInputArrayToProcess(0, previous ? 1 : 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrayName);
-    }
-    if (previous)
-    {
-      filter->SetInputConnection(0, previous->GetOutputPort());
+      filter->SetInputData(0, current);
       filter->SetInputData(1, image);
     }
     else
     {
       filter->SetInputData(0, image);
     }
-    StageRelay relay{ this, shift / total, stage.Share / total };
-    vtkNew<vtkCallbackCommand> forward;
-    forward->SetCallback(&StageRelay::Forward);
-    forward->SetClientData(&relay);
-    filter->AddObserver(vtkCommand::ProgressEvent, forward);
-    vtkNew<ErrorRelay> errors;
-    filter->AddObserver(vtkCommand::ErrorEvent, errors);
-    this->SetProgressText(stage.Name);
-    filter->Update();
-    filter->RemoveObserver(forward);
-    if (this->CheckAbort())
+    std::string error;
+    if (meshes)
+    {
+      error = this->RunStage(filter, stages[s].Name, shift / total, stages[s].Share / total);
+    }
+    if (this->CheckAbort() && !piece)
     {
       output->Initialize();
-      return 1;
+      return true;
     }
-    if (!errors->Message.empty())
+    if (!this->FinishStage(filter, stages[s].Name, error, piece))
     {
-      // Keep the stage's own words: VTK formats "... Class (0x...): message".
-      const std::size_t marker = errors->Message.find("): ");
-      vtkErrorMacro(<< stage.Name << ": "
-                    << (marker == std::string::npos ? errors->Message : errors->Message.substr(marker + 3)));
-      return 0;
+      return false;
     }
-    shift += stage.Share;
-    previous = filter;
+    if (meshes)
+    {
+      current = vtkUnstructuredGrid::SafeDownCast(filter->GetOutputDataObject(0));
+    }
+    if (piece && s == namedStage && !this->NamePiecePoints(image, lattice, current, piece))
+    {
+      return false;
+    }
+    if (piece && s + 2 == stages.size())
+    {
+      if (!this->KeepOwnTets(current, piece))
+      {
+        return false;
+      }
+      // A rank that owns no tet has nothing to measure: an empty piece, without the empty
+      // arrays that ParaView's data movement cannot read back.
+      meshes = meshes && current->GetNumberOfCells() > 0;
+    }
+    shift += stages[s].Share;
   }
-  output->ShallowCopy(quality->GetOutput());
-  this->SetProgressText(nullptr);
-  return 1;
+  if (meshes)
+  {
+    output->ShallowCopy(quality->GetOutput());
+  }
+  return true;
+}
+
+void vtkCBC3DMesher::PrepareStage(vtkCBC3DAlgorithm* filter, const char* arrayName, bool imageOnPort1) const
+{
+  filter->RemoveAllBackgroundLabels();
+  for (const vtkTypeInt64 label : this->BackgroundLabels)
+  {
+    filter->AddBackgroundLabel(label);
+  }
+  filter->SetNumberOfThreads(this->NumberOfThreads);
+  if (arrayName && *arrayName)
+  {
+    filter->SetInputArrayToProcess(0, imageOnPort1 ? 1 : 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, arrayName);
+  }
+}
+
+std::string vtkCBC3DMesher::RunStage(vtkAlgorithm* filter, const char* name, double shift, double scale)
+{
+  StageRelay relay{ this, shift, scale };
+  vtkNew<vtkCallbackCommand> forward;
+  forward->SetCallback(&StageRelay::Forward);
+  forward->SetClientData(&relay);
+  const unsigned long progress = filter->AddObserver(vtkCommand::ProgressEvent, forward);
+  vtkNew<ErrorRelay> errors;
+  const unsigned long failures = filter->AddObserver(vtkCommand::ErrorEvent, errors);
+  this->SetProgressText(name);
+  filter->Update();
+  filter->RemoveObserver(progress);
+  filter->RemoveObserver(failures);
+  return errors->Message;
+}
+
+bool vtkCBC3DMesher::NamePiecePoints(vtkImageData* image, vtkAlgorithm* lattice, vtkUnstructuredGrid* mesh, Piece* piece)
+{
+  std::string error;
+  vtkDataArray* edge = lattice->GetOutputDataObject(0)->GetFieldData()->GetArray(vtkCBC3DArrayNames::LatticeEdgeLength);
+  if (piece->HasTissue && edge)
+  {
+    const double h = edge->GetComponent(0, 0);
+    const vtkCBC3DPieces::LatticeKeys keys(image, piece->WholeLower, h);
+    const int axis = piece->Plan.Axis;
+    piece->CutKeys.clear();
+    for (int r = 1; r < piece->Plan.Pieces; ++r)
+    {
+      piece->CutKeys.push_back(keys.CutKey(axis, piece->Plan.Cuts[r], image->GetSpacing()[axis]));
+    }
+    vtkCBC3DPieces::AddLatticeKeys(mesh, keys, error);
+  }
+  return this->FinishStage(lattice, "Global point ids", error, piece);
+}
+
+bool vtkCBC3DMesher::KeepOwnTets(vtkSmartPointer<vtkUnstructuredGrid>& mesh, Piece* piece)
+{
+  vtkNew<vtkUnstructuredGrid> owned;
+  std::string error;
+  if (!vtkCBC3DSeams::KeepOwnedTets(
+        piece->Controller, piece->Plan.Axis, piece->CutKeys, mesh, owned, piece->Seams, error))
+  {
+    if (piece->Controller->GetLocalProcessId() == 0)
+    {
+      vtkErrorMacro(<< error);
+    }
+    return false;
+  }
+  mesh = owned;
+  return true;
 }
 
 double vtkCBC3DMesher::GetAutomaticBoundaryDistance() const
@@ -178,4 +410,5 @@ void vtkCBC3DMesher::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Pattern: " << this->Pattern << "\n";
   os << indent << "TargetPlacement: " << this->TargetPlacement << "\n";
   os << indent << "KeepVolumes: " << (this->KeepVolumes ? "on" : "off") << "\n";
+  os << indent << "RankHalo: " << this->RankHalo << " lattice cubes\n";
 }

@@ -9,6 +9,15 @@
  * `Label`, `RefinementLevel`, `MinDihedralAngle`, `MaxDihedralAngle` per tet, `Displacement`
  * per point, and the stages' field data (see vtkCBC3DArrayNames.h).
  *
+ * Under MPI (`mpiexec -n N pvbatch`, pvserver), where the pipeline asks for one piece per rank,
+ * each rank asks upstream only for its slab of the image along the longest axis and a halo of
+ * lattice cubes, meshes it on the lattice of the whole image, and keeps the tets whose centres
+ * lie in its slab; points on rank borders take their owner's position, and the ranks check that
+ * their border faces match (vtkCBC3DSeams). The pieces carry `GlobalIds`, so writers merge them
+ * (vtkCBC3DMeshWriter writes one file). Over ranks the mesher stops after refinement: a tet
+ * budget (MaximumNumberOfTets) and deformation (Iterations > 0) are refused there, with one
+ * error on the first rank.
+ *
  * @sa vtkCBC3DBCCLattice vtkCBC3DRefinement vtkCBC3DDeformation vtkCBC3DMeshQuality
  */
 #ifndef vtkCBC3DMesher_h
@@ -16,6 +25,13 @@
 
 #include "vtkCBC3DAlgorithm.h"
 #include "vtkCBC3DFiltersModule.h" // For export macro
+
+#include <vtkSmartPointer.h> // For KeepOwnTets
+
+#include <string> // For RunStage
+
+class vtkImageData;
+class vtkUnstructuredGrid;
 
 class VTKCBC3DFILTERS_EXPORT vtkCBC3DMesher : public vtkCBC3DAlgorithm
 {
@@ -102,10 +118,25 @@ public:
   vtkBooleanMacro(KeepVolumes, bool);
   ///@}
 
+  ///@{
+  /**
+   * Over MPI ranks: the lattice cubes each rank meshes beyond its slab on each side (default 4).
+   * Each rank refines its piece alone, so the halo must hold what decides the tets near its
+   * border; where it does not, the ranks' border faces differ and the mesher says so. A wider
+   * halo costs each rank memory and time in proportion.
+   */
+  vtkSetClampMacro(RankHalo, double, 1.0, 1000.0);
+  vtkGetMacro(RankHalo, double);
+  ///@}
+
 protected:
   vtkCBC3DMesher() = default;
   ~vtkCBC3DMesher() override = default;
 
+  int RequestInformation(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
+  int RequestUpdateExtent(vtkInformation* request, vtkInformationVector** inputVector,
+    vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
     vtkInformationVector* outputVector) override;
 
@@ -117,8 +148,18 @@ protected:
   int Pattern = 1;
   int TargetPlacement = 1; // vtkCBC3DDeformation::VOXEL_FACE
   bool KeepVolumes = true;
+  double RankHalo = 4.0;
 
 private:
+  struct Piece;
+  bool PreparePiece(vtkImageData* image, vtkInformation* inputInfo, Piece& piece);
+  bool RunStages(vtkImageData* image, Piece* piece, vtkUnstructuredGrid* output);
+  bool FinishStage(vtkAlgorithm* filter, const char* name, const std::string& error, Piece* piece);
+  void PrepareStage(vtkCBC3DAlgorithm* filter, const char* arrayName, bool imageOnPort1) const;
+  std::string RunStage(vtkAlgorithm* filter, const char* name, double shift, double scale);
+  bool NamePiecePoints(vtkImageData* image, vtkAlgorithm* lattice, vtkUnstructuredGrid* mesh, Piece* piece);
+  bool KeepOwnTets(vtkSmartPointer<vtkUnstructuredGrid>& mesh, Piece* piece);
+
   vtkCBC3DMesher(const vtkCBC3DMesher&) = delete;
   void operator=(const vtkCBC3DMesher&) = delete;
 };

@@ -35,6 +35,13 @@ struct LabelImage
   LabelCodes Codes; // the values the labels stand for (the labels themselves unless larger)
   std::array<int, 3> StoredLower = { 0, 0, 0 };
   std::array<int, 3> StoredSize = { 0, 0, 0 };
+  /// A piece of a larger image (an MPI rank's slab) frames its lattice on the whole image's
+  /// tissue box, given here in this image's voxel indices (it may reach beyond Dimensions), so
+  /// that every piece's lattice is a part of the one lattice of the whole image. Unset, the
+  /// lattice frames this image's own tissue box.
+  bool HasLatticeBox = false;
+  std::array<int, 3> LatticeBoxLower = { 0, 0, 0 };
+  std::array<int, 3> LatticeBoxUpper = { -1, -1, -1 };
   /// Optional (IndexLabelRuns fills it; empty otherwise): each stored row's runs of one label.
   /// Row r = (j - StoredLower[1]) + StoredSize[1] * (k - StoredLower[2]) has the runs
   /// RowRunFirst[r] .. RowRunFirst[r + 1] - 1, each starting at x offset (from StoredLower[0])

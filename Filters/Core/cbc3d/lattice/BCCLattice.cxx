@@ -83,8 +83,35 @@ struct LatticeFrame
   }
 };
 
+// A piece's frame: the cubes of the whole image's frame (anchored on its tissue box, as below)
+// that cover the piece's part of that box.
+bool MakePieceFrame(const LabelImage& image, double h, LatticeFrame& frame)
+{
+  frame.H = h;
+  for (int a = 0; a < 3; ++a)
+  {
+    const int lower = std::max(image.LatticeBoxLower[a], 0);
+    const int upper = std::min(image.LatticeBoxUpper[a], image.Dimensions[a] - 1);
+    if (lower > upper)
+    {
+      return false;
+    }
+    const double anchor = image.Spacing[a] * image.LatticeBoxLower[a] - h;
+    const double lo = image.Spacing[a] * lower;
+    const double hi = image.Spacing[a] * upper;
+    const std::int64_t skipped = static_cast<std::int64_t>(std::floor((lo - anchor) / h)) - 1;
+    frame.CornerOrigin[a] = anchor + double(skipped) * h;
+    frame.Cubes[a] = static_cast<std::int64_t>(std::floor((hi - anchor) / h)) + 2 - skipped;
+  }
+  return true;
+}
+
 bool MakeFrame(const LabelImage& image, double h, LatticeFrame& frame)
 {
+  if (image.HasLatticeBox)
+  {
+    return MakePieceFrame(image, h, frame);
+  }
   std::array<int, 3> lower, upper;
   if (!TissueIndexBounds(image, lower, upper))
   {

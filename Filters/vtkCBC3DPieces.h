@@ -1,0 +1,90 @@
+/**
+ * @file vtkCBC3DPieces.h
+ * @brief How vtkCBC3DMesher splits an image over MPI ranks, and names lattice points (private).
+ *
+ * The image is cut into slabs along its longest axis, one per rank. A rank reads its slab and a
+ * halo of lattice cubes on each side, meshes that piece on the lattice of the whole image, and
+ * keeps the tets whose centres lie in its slab (vtkCBC3DSeams). The halo keeps the piece's
+ * false borders (the image ends there for the rank) away from the tets it keeps.
+ *
+ * A lattice point's key packs its position in the whole image's lattice, in steps of 1/256 of
+ * a cube edge, so every rank that holds a point gives it the same key without talking. (The
+ * output's GlobalIds are compact numbers, 0 to the points less one: ParaView's data movement
+ * keeps 32 bits of them.)
+ */
+#ifndef vtkCBC3DPieces_h
+#define vtkCBC3DPieces_h
+
+#include <vtkType.h>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+class vtkDataArray;
+class vtkImageData;
+class vtkMultiProcessController;
+class vtkUnstructuredGrid;
+
+namespace vtkCBC3DPieces
+{
+/// The slabs: piece r owns the structured indices [Cuts[r], Cuts[r + 1]) along Axis.
+struct SlabPlan
+{
+  int Axis = 2;
+  int Pieces = 1;
+  int Piece = 0;
+  std::vector<int> Cuts;
+  int HaloVoxels = 0;
+};
+
+/// Splits the whole extent into `pieces` slabs along the longest physical axis; the halo is
+/// `haloCubes` cubes of edge `h` (mm).
+SlabPlan PlanSlabs(const int wholeExtent[6], const double spacing[3], double h, double haloCubes, int pieces,
+  int piece);
+
+/// The extent a piece reads: its slab and the halo, within the whole extent.
+void PieceExtent(const SlabPlan& plan, const int wholeExtent[6], int extent[6]);
+
+/// The box (structured indices, inclusive) of the image's tissue voxels: those that hold none of
+/// the background values. False where the image holds none.
+bool TissueBox(vtkImageData* image, vtkDataArray* labels, const std::vector<vtkTypeInt64>& background,
+  int lower[3], int upper[3]);
+
+/// The box of every rank's tissue; false where no rank has tissue.
+bool AgreeOnTissueBox(vtkMultiProcessController* controller, bool has, const int lower[3],
+  const int upper[3], int wholeLower[3], int wholeUpper[3]);
+
+/// Whether every rank says yes (a collective: every rank calls it as often).
+bool AllAgree(vtkMultiProcessController* controller, bool yes);
+
+/// Where lattice points sit in the whole image's lattice.
+struct LatticeKeys
+{
+  double Origin[3] = { 0, 0, 0 };          // the world position of structured index (0,0,0)
+  double Direction[9] = { 1, 0, 0, 0, 1, 0, 0, 0, 1 };
+  double Corner[3] = { 0, 0, 0 };          // the lattice's corner, mm along the image axes
+  double Unit = 1.0;                       // one key step, mm
+
+  /// For an image and its whole tissue box, and the lattice edge h.
+  LatticeKeys(vtkImageData* image, const int wholeLower[3], double h);
+  /// A point's key along each axis; false where it is off the key grid.
+  bool Key(const double point[3], std::array<std::int64_t, 3>& key) const;
+  /// The key of the plane between two voxel slices: before structured index `slice`.
+  std::int64_t CutKey(int axis, int slice, double spacing) const;
+};
+
+/// One number per key (21 bits an axis), and back.
+bool PackKey(const std::array<std::int64_t, 3>& key, vtkIdType& id);
+std::array<std::int64_t, 3> UnpackKey(vtkIdType id);
+
+/// The point array of packed keys, which vtkCBC3DSeams turns into compact GlobalIds.
+constexpr const char* LatticeKeyName = "LatticeKey";
+
+/// Adds the LatticeKey point array (packed keys) to a lattice mesh; false with a message where a
+/// point is off the grid or beyond the range of the keys.
+bool AddLatticeKeys(vtkUnstructuredGrid* mesh, const LatticeKeys& keys, std::string& error);
+} // namespace vtkCBC3DPieces
+
+#endif
