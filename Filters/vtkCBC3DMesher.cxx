@@ -9,6 +9,7 @@
 #include "vtkCBC3DRefinement.h"
 #include "vtkCBC3DSeams.h"
 
+#include "cbc3d/refinement/RankPasses.h"
 #include "cbc3d/refinement/Refinement.h"
 
 #include <vtkCallbackCommand.h>
@@ -85,6 +86,7 @@ struct vtkCBC3DMesher::Piece
   bool HasTissue = false;
   std::vector<std::int64_t> CutKeys;
   vtkCBC3DSeams::SeamReport Seams;
+  std::shared_ptr<const cbc3d::RankPasses> Passes;
 };
 
 namespace
@@ -246,6 +248,11 @@ bool vtkCBC3DMesher::RunStages(vtkImageData* image, Piece* piece, vtkUnstructure
   deformation->SetPattern(this->Pattern);
   deformation->SetTargetPlacement(this->TargetPlacement);
   deformation->SetKeepVolumes(this->KeepVolumes);
+  if (piece)
+  {
+    piece->Passes = vtkCBC3DPieces::MakeRankPasses(piece->Controller, piece->Plan, image);
+    refinement->SetRankPasses(piece->Passes);
+  }
   vtkInformation* arrayRequest = this->GetInputArrayInformation(0);
   const char* arrayName = arrayRequest && arrayRequest->Has(vtkDataObject::FIELD_NAME())
     ? arrayRequest->Get(vtkDataObject::FIELD_NAME())
@@ -289,6 +296,10 @@ bool vtkCBC3DMesher::RunStages(vtkImageData* image, Piece* piece, vtkUnstructure
     if (meshes)
     {
       error = this->RunStage(filter, stages[s].Name, shift / total, stages[s].Share / total);
+    }
+    else if (piece && filter == refinement.GetPointer())
+    {
+      vtkCBC3DPieces::IdlePasses(*piece->Passes, this->BoundaryDistance >= 0.0);
     }
     if (this->CheckAbort() && !piece)
     {

@@ -11,8 +11,9 @@
  *
  * Under MPI (`mpiexec -n N pvbatch`, pvserver), where the pipeline asks for one piece per rank,
  * each rank asks upstream only for its slab of the image along the longest axis and a halo of
- * lattice cubes, meshes it on the lattice of the whole image, and keeps the tets whose centres
- * lie in its slab; points on rank borders take their owner's position, and the ranks check that
+ * lattice cubes, meshes it on the lattice of the whole image (its refinement passes taking the
+ * decisions of the whole image: cbc3d::RankPasses), and keeps the tets whose centres lie in its
+ * slab; points on rank borders take their owner's position, and the ranks check that
  * their border faces match (vtkCBC3DSeams). The pieces carry `GlobalIds`, so writers merge them
  * (vtkCBC3DMeshWriter writes one file). Over ranks the mesher stops after refinement: a tet
  * budget (MaximumNumberOfTets) and deformation (Iterations > 0) are refused there, with one
@@ -121,9 +122,11 @@ public:
   ///@{
   /**
    * Over MPI ranks: the lattice cubes each rank meshes beyond its slab on each side (default 4).
-   * Each rank refines its piece alone, so the halo must hold what decides the tets near its
-   * border; where it does not, the ranks' border faces differ and the mesher says so. A wider
-   * halo costs each rank memory and time in proportion.
+   * The ranks' refinement passes share their decisions (each tissue's fidelity and the boundary
+   * distance, summed over the slabs), but each rank splits and closes its own piece: the halo
+   * keeps the piece's false border, where the image ends for the rank, away from its slab.
+   * Where it is too thin, the ranks' border faces differ and the mesher says so. A wider halo
+   * costs each rank memory and time in proportion.
    */
   vtkSetClampMacro(RankHalo, double, 1.0, 1000.0);
   vtkGetMacro(RankHalo, double);

@@ -3,8 +3,10 @@
 #include "vtkCBC3DArrayNames.h"
 
 #include "cbc3d/base/LabelImage.h"
+#include "cbc3d/refinement/RankPasses.h"
 
 #include <vtkArrayDispatch.h>
+#include <vtkDoubleArray.h>
 #include <vtkDataArrayRange.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
@@ -17,6 +19,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 
 namespace vtkCBC3DPieces
 {
@@ -136,6 +140,70 @@ bool AllAgree(vtkMultiProcessController* controller, bool yes)
   int mine = yes ? 1 : 0, all = 0;
   controller->AllReduce(&mine, &all, 1, vtkCommunicator::MIN_OP);
   return all == 1;
+}
+
+std::shared_ptr<const cbc3d::RankPasses> MakeRankPasses(
+  vtkMultiProcessController* controller, const SlabPlan& plan, vtkImageData* image)
+{
+  auto ranks = std::make_shared<cbc3d::RankPasses>();
+  const int a = plan.Axis;
+  const double spacing = image->GetSpacing()[a];
+  const int first = image->GetExtent()[2 * a];
+  // A third of a voxel past the middle between two slices: no voxel centre lies there, nor a
+  // lattice point or tet centre (those sit at binary fractions of the voxel size).
+  auto border = [&](int slice) { return spacing * (slice - first - 0.5 + 1.0 / 3.0); };
+  const double infinity = std::numeric_limits<double>::infinity();
+  ranks->Axis = a;
+  ranks->Lower = plan.Piece > 0 ? border(plan.Cuts[plan.Piece]) : -infinity;
+  ranks->Upper = plan.Piece + 1 < plan.Pieces ? border(plan.Cuts[plan.Piece + 1]) : infinity;
+  ranks->SumByLabel = [controller](std::map<std::int32_t, std::array<double, 3>>& sums) {
+    vtkNew<vtkDoubleArray> mine, all;
+    for (const auto& [label, values] : sums)
+    {
+      mine->InsertNextValue(double(label));
+      for (const double value : values)
+        mine->InsertNextValue(value);
+    }
+    controller->AllGatherV(mine, all);
+    sums.clear();
+    for (vtkIdType r = 0; r + 3 < all->GetNumberOfValues(); r += 4)
+    {
+      auto& total = sums[std::int32_t(all->GetValue(r))];
+      for (int k = 0; k < 3; ++k)
+        total[k] += all->GetValue(r + 1 + k);
+    }
+  };
+  ranks->SumAndMax = [controller](double& sum, double& largest) {
+    double mine[2] = { sum, largest }, all[2];
+    controller->AllReduce(mine, all, 1, vtkCommunicator::SUM_OP);
+    controller->AllReduce(mine + 1, all + 1, 1, vtkCommunicator::MAX_OP);
+    sum = all[0];
+    largest = all[1];
+  };
+  ranks->Any = [controller](bool yes) {
+    int mine = yes ? 1 : 0, all = 0;
+    controller->AllReduce(&mine, &all, 1, vtkCommunicator::MAX_OP);
+    return all != 0;
+  };
+  return ranks;
+}
+
+void IdlePasses(const cbc3d::RankPasses& ranks, bool coverage)
+{
+  // The calls of one refinement round, pass by pass (cbc3d's Refinement.cxx), then the round's.
+  do
+  {
+    do
+    {
+      std::map<std::int32_t, std::array<double, 3>> none;
+      ranks.SumByLabel(none);
+      if (coverage)
+      {
+        double far = 0.0, largest = 0.0;
+        ranks.SumAndMax(far, largest);
+      }
+    } while (ranks.Any(false));
+  } while (ranks.Any(false));
 }
 
 LatticeKeys::LatticeKeys(vtkImageData* image, const int wholeLower[3], double h)

@@ -19,6 +19,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,11 @@ class vtkDataArray;
 class vtkImageData;
 class vtkMultiProcessController;
 class vtkUnstructuredGrid;
+
+namespace cbc3d
+{
+struct RankPasses;
+}
 
 namespace vtkCBC3DPieces
 {
@@ -74,6 +80,16 @@ struct LatticeKeys
   /// The key of the plane between two voxel slices: before structured index `slice`.
   std::int64_t CutKey(int axis, int slice, double spacing) const;
 };
+
+/// The refinement decisions a rank shares with the others (its slab, and sums over the ranks
+/// through `controller`), for the piece `image` of the plan.
+std::shared_ptr<const cbc3d::RankPasses> MakeRankPasses(
+  vtkMultiProcessController* controller, const SlabPlan& plan, vtkImageData* image);
+
+/// What a rank without tissue does while the others refine: the same collective calls, with
+/// nothing to add, until every rank is done. `coverage`: whether the refinement measures the
+/// boundary distance (BoundaryDistance not negative).
+void IdlePasses(const cbc3d::RankPasses& ranks, bool coverage);
 
 /// One number per key (21 bits an axis), and back.
 bool PackKey(const std::array<std::int64_t, 3>& key, vtkIdType& id);

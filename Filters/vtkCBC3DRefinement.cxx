@@ -85,6 +85,7 @@ int vtkCBC3DRefinement::RequestData(
   params.SoundLabels = this->SoundLabels;
   params.NumberOfThreads = this->NumberOfThreads;
   params.MaximumTets = this->MaximumNumberOfTets;
+  params.Ranks = this->Ranks;
   if (!this->ReadTissueCodes(this->TissueFidelity, *image, params.FidelityByTissue) ||
     !this->ReadEdgeLimits(*image, params.MaximumEdge))
   {

@@ -42,6 +42,13 @@
 #include "vtkCBC3DAlgorithm.h"
 #include "vtkCBC3DFiltersModule.h" // For export macro
 
+#include <memory> // For SetRankPasses
+
+namespace cbc3d
+{
+struct RankPasses;
+}
+
 class VTKCBC3DFILTERS_EXPORT vtkCBC3DRefinement : public vtkCBC3DAlgorithm
 {
 public:
@@ -123,6 +130,11 @@ public:
   vtkBooleanMacro(SoundLabels, bool);
   ///@}
 
+#ifndef __VTK_WRAP__
+  /// Over MPI ranks (vtkCBC3DMesher sets it): the decisions the ranks' passes share.
+  void SetRankPasses(std::shared_ptr<const cbc3d::RankPasses> ranks) { this->Ranks = std::move(ranks); }
+#endif
+
 protected:
   vtkCBC3DRefinement();
   ~vtkCBC3DRefinement() override = default;
@@ -138,6 +150,9 @@ protected:
   double BoundaryDistance = 0.0;
   int MinimumComponentVoxels = 8;
   bool SoundLabels = true;
+#ifndef __VTK_WRAP__
+  std::shared_ptr<const cbc3d::RankPasses> Ranks;
+#endif
 
 private:
   vtkCBC3DRefinement(const vtkCBC3DRefinement&) = delete;

@@ -132,11 +132,12 @@ void BoundaryCoverage::FindTissueGaps(const Tissue& tissue, const std::vector<Fa
   {
     const Eigen::Vector3d& centre = tissue.Centres[i];
     const double gap = (predicted[nearestVertex[i]] - centre).norm();
-    largest = std::max(largest, gap);
+    const bool counted = !this->Counted || this->Counted(centre);
+    largest = counted ? std::max(largest, gap) : largest;
     if (gap > distance)
     {
       nearestFace[i] = faceGrid.NearestAny(centre);
-      ++far;
+      far += counted;
     }
   }
   gaps.LargestGap = std::max(gaps.LargestGap, largest);
@@ -162,8 +163,11 @@ BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>
     const std::vector<Face>& faces = surfaces[label];
     if (faces.empty() || tissue.Centres.empty())
     {
-      gaps.LargestGap = faces.empty() && !tissue.Centres.empty() ? std::numeric_limits<double>::infinity()
-                                                                 : gaps.LargestGap;
+      const bool counted = !this->Counted ||
+        std::any_of(tissue.Centres.begin(), tissue.Centres.end(), this->Counted);
+      gaps.LargestGap = faces.empty() && !tissue.Centres.empty() && counted
+        ? std::numeric_limits<double>::infinity()
+        : gaps.LargestGap;
       continue;
     }
     this->FindTissueGaps(tissue, faces, points, distance, gaps);

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <vector>
@@ -60,6 +61,10 @@ public:
   Gaps Find(const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
     const std::vector<std::int32_t>& labels, double distance) const;
 
+  /// Over MPI ranks: the boundary voxels whose gaps LargestGap and FarVoxels count (those of
+  /// the rank's slab); far voxels elsewhere still mark their faces. Unset: all.
+  void SetCounted(std::function<bool(const Eigen::Vector3d&)> counted) { this->Counted = std::move(counted); }
+
 private:
   struct Tissue
   {
@@ -75,6 +80,7 @@ private:
   std::map<std::int32_t, Tissue> Tissues;
   double Reach;
   int Threads;
+  std::function<bool(const Eigen::Vector3d&)> Counted;
 };
 } // namespace cbc3d
 

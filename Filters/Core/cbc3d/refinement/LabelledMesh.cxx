@@ -47,7 +47,8 @@ void MatchLastPass(const LabelledMesh& mesh, const std::vector<std::uint8_t>& ma
 // Per tissue label, the voxel centres in its tets and those of them of its label (whole
 // numbers of sample weights, summed exactly: the same in any order, so in parallel).
 void CountTissueVoxelsInTets(const LabelImage& image, const LabelledMesh& mesh, int threads,
-  std::map<std::int32_t, double>& inTets, std::map<std::int32_t, double>& shared)
+  std::map<std::int32_t, double>& inTets, std::map<std::int32_t, double>& shared,
+  const std::vector<char>* counted = nullptr)
 {
   std::map<std::int32_t, std::pair<std::int64_t, std::int64_t>> counts;
   const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
@@ -60,7 +61,7 @@ void CountTissueVoxelsInTets(const LabelImage& image, const LabelledMesh& mesh, 
     {
       // Only voxel centres count: each belongs to one tet. Sub-sampled tets hold none.
       const std::int32_t label = mesh.Labels[t];
-      if (mesh.HoldsVoxelCentres[t] && IsTissueLabel(image, label))
+      if (mesh.HoldsVoxelCentres[t] && IsTissueLabel(image, label) && (!counted || (*counted)[t]))
       {
         errors.Run([&] {
           auto& entry = local[label];
@@ -83,6 +84,54 @@ void CountTissueVoxelsInTets(const LabelImage& image, const LabelledMesh& mesh, 
   {
     inTets[label] = double(sums.first);
     shared[label] = double(sums.second);
+  }
+}
+// The counts of MeasureFidelity over this rank's slab alone, summed over the ranks: voxels by
+// their centres, tets by their centres (the slabs' borders lie where neither can, RankPasses).
+void CountRankSlab(const LabelImage& image, const TissueComponents& components, const LabelledMesh& mesh,
+  const std::vector<Eigen::Vector3d>& points, const RankPasses& ranks, int threads,
+  std::map<std::int32_t, double>& inImage, std::map<std::int32_t, double>& inTets,
+  std::map<std::int32_t, double>& shared)
+{
+  const int axis = ranks.Axis;
+  const Eigen::Vector3d toAxis = image.Direction.col(axis);
+  std::vector<char> owned(mesh.Tets.size(), 0);
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const PointId p : mesh.Tets[t])
+      centre += points[p];
+    owned[t] = ranks.Owns(toAxis.dot(centre / 4.0 - image.Origin));
+  }
+  CountTissueVoxelsInTets(image, mesh, threads, inTets, shared, &owned);
+  for (const auto& run : components.Runs)
+  {
+    const std::array<int, 3> first = image.VoxelCoordinates(run.First);
+    std::int64_t voxels = 0;
+    for (std::int64_t v = 0; v <= run.Last - run.First; ++v)
+    {
+      // Runs go along x: only slabs across x cut one.
+      const int index = first[axis] + (axis == 0 ? int(v) : 0);
+      voxels += ranks.Owns(image.Spacing[axis] * index);
+    }
+    inImage[components.Label[run.Component]] += double(voxels) * double(VoxelWeight);
+  }
+  std::map<std::int32_t, std::array<double, 3>> sums;
+  for (const auto& [label, voxels] : inImage)
+    sums[label][0] = voxels;
+  for (const auto& [label, voxels] : inTets)
+    sums[label][1] = voxels;
+  for (const auto& [label, voxels] : shared)
+    sums[label][2] = voxels;
+  ranks.SumByLabel(sums);
+  inImage.clear();
+  inTets.clear();
+  shared.clear();
+  for (const auto& [label, values] : sums)
+  {
+    inImage[label] = values[0];
+    inTets[label] = values[1];
+    shared[label] = values[2];
   }
 }
 } // namespace
@@ -183,14 +232,21 @@ void ResolveOwners(LabelledMesh& mesh, int threads)
 // F1 and F2 of every tissue, and its components kept in the mesh.
 std::map<std::int32_t, TissueFidelity> MeasureFidelity(const LabelImage& image,
   const TissueComponents& components, int minimumVoxels, const LabelledMesh& mesh, int threads,
-  std::vector<char>& componentInMesh)
+  std::vector<char>& componentInMesh, const RankPasses* ranks, const std::vector<Eigen::Vector3d>* points)
 {
   std::map<std::int32_t, double> inTets, shared, inImage;
-  for (std::size_t c = 0; c < components.Label.size(); ++c)
+  if (ranks && points)
   {
-    inImage[components.Label[c]] += double(components.Size[c]) * double(VoxelWeight);
+    CountRankSlab(image, components, mesh, *points, *ranks, threads, inImage, inTets, shared);
   }
-  CountTissueVoxelsInTets(image, mesh, threads, inTets, shared);
+  else
+  {
+    for (std::size_t c = 0; c < components.Label.size(); ++c)
+    {
+      inImage[components.Label[c]] += double(components.Size[c]) * double(VoxelWeight);
+    }
+    CountTissueVoxelsInTets(image, mesh, threads, inTets, shared);
+  }
   componentInMesh.assign(components.Label.size(), 0);
   const std::int64_t runCount = static_cast<std::int64_t>(components.Runs.size());
 #pragma omp parallel for schedule(dynamic, 64) num_threads(ThreadCount(threads))

@@ -13,6 +13,8 @@
 #include <map>
 #include <vector>
 
+#include "cbc3d/refinement/RankPasses.h"
+
 namespace cbc3d
 {
 // A tet that holds no sample at all (outside the image) has no label.
@@ -62,10 +64,12 @@ bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threa
 void ResolveOwners(LabelledMesh& mesh, int threads);
 
 /// F1 and F2 of every tissue, and which of its components (of `minimumVoxels` or more) have a
-/// voxel in a tet of their label (`componentInMesh`, per component).
+/// voxel in a tet of their label (`componentInMesh`, per component). With `ranks` (and the
+/// mesh's `points`), F1 and F2 count this rank's slab and are summed over the ranks.
 std::map<std::int32_t, TissueFidelity> MeasureFidelity(const LabelImage& image,
   const TissueComponents& components, int minimumVoxels, const LabelledMesh& mesh, int threads,
-  std::vector<char>& componentInMesh);
+  std::vector<char>& componentInMesh, const RankPasses* ranks = nullptr,
+  const std::vector<Eigen::Vector3d>* points = nullptr);
 } // namespace cbc3d
 
 #endif

@@ -109,10 +109,17 @@ struct CoverageProgress
 // brings neither the farthest voxel nearer nor fewer voxels far (`progress` then stalls).
 bool MarkForCoverage(const BoundaryCoverage& coverage, double distance, const RedGreenMesh& hierarchy,
   const LabelledMesh& mesh, double minimumEdge, CoverageProgress& progress, std::vector<char>& marked,
-  std::vector<std::pair<PointId, PointId>>& bisect)
+  std::vector<std::pair<PointId, PointId>>& bisect, const RankPasses* ranks)
 {
   const auto& x = hierarchy.Points();
-  const BoundaryCoverage::Gaps gaps = coverage.Find(x, mesh.Tets, mesh.Labels, distance);
+  BoundaryCoverage::Gaps gaps = coverage.Find(x, mesh.Tets, mesh.Labels, distance);
+  if (ranks)
+  {
+    // Progress is the whole image's: every rank stalls, or goes on, together.
+    double far = double(gaps.FarVoxels);
+    ranks->SumAndMax(far, gaps.LargestGap);
+    gaps.FarVoxels = std::llround(far);
+  }
   BoundaryCoverage::Gaps before;
   before.LargestGap = progress.LargestGap;
   before.FarVoxels = progress.FarVoxels;
@@ -201,8 +208,16 @@ std::unique_ptr<BoundaryCoverage> MakeCoverage(const LabelImage& image, const Ti
   result.BoundaryDistance =
     params.BoundaryDistance > 0.0 ? params.BoundaryDistance : DefaultBoundaryDistance(longest);
   // Deformation moves a vertex by about an element size: the lattice's shortest edge.
-  return std::make_unique<BoundaryCoverage>(image, components, params.MinimumComponentVoxels,
+  auto coverage = std::make_unique<BoundaryCoverage>(image, components, params.MinimumComponentVoxels,
     hierarchy.ShortestEdge(0), params.NumberOfThreads);
+  if (const RankPasses* ranks = params.Ranks.get())
+  {
+    const Eigen::Vector3d axis = image.Direction.col(ranks->Axis);
+    coverage->SetCounted([&image, ranks, axis](const Eigen::Vector3d& centre) {
+      return ranks->Owns(axis.dot(centre - image.Origin));
+    });
+  }
+  return coverage;
 }
 
 // Why the passes ended. The words come last (StopReason), when the fidelity after the sound
@@ -295,8 +310,15 @@ bool SplitOnePass(const LabelImage& image, const TissueComponents& components, c
     hierarchy.Reds().size());
   MarkForMaximumEdge(image, params, hierarchy, mesh, marked);
   std::vector<std::pair<PointId, PointId>> bisect;
-  const bool coverageWanted = coverage && !progress.Stalled &&
-    MarkForCoverage(*coverage, distance, hierarchy, mesh, limits.MinimumEdge, progress, marked, bisect);
+  const RankPasses* ranks = params.Ranks.get();
+  const bool measure = coverage && !progress.Stalled;
+  const bool coverageWanted =
+    measure && MarkForCoverage(*coverage, distance, hierarchy, mesh, limits.MinimumEdge, progress, marked, bisect, ranks);
+  if (coverage && !measure && ranks)
+  {
+    double far = 0.0, largest = 0.0; // one call a pass on every rank, measuring or not
+    ranks->SumAndMax(far, largest);
+  }
   bool anyWanted = coverageWanted;
   std::size_t splits = KeepSplittable(hierarchy, limits, marked, anyWanted);
   bool fits = true;
@@ -370,17 +392,19 @@ Status RefineToAim(const LabelImage& image, const TissueComponents& components, 
       {
         return Status::Aborted();
       }
-      fidelity = MeasureFidelity(
-        image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
+      fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads,
+        componentInMesh, params.Ranks.get(), &hierarchy.Points());
       if (!params.AsksForRefinement())
       {
         passesEnd.End = PassesEnd::NoRefinementAsked;
         break;
       }
 
-      if (!SplitOnePass(image, components, params, coverage.get(), result.BoundaryDistance,
-            PassLimits{ minimumEdge, params.MinimumEdgeLength, memoryLimit }, fidelity, componentInMesh, mesh,
-            hierarchy, coverageProgress, budget.get(), passesEnd))
+      const bool split = SplitOnePass(image, components, params, coverage.get(), result.BoundaryDistance,
+        PassLimits{ minimumEdge, params.MinimumEdgeLength, memoryLimit }, fidelity, componentInMesh, mesh,
+        hierarchy, coverageProgress, budget.get(), passesEnd);
+      // Over ranks, a rank with nothing to split passes on while another splits.
+      if (params.Ranks ? !params.Ranks->Any(split) : !split)
       {
         break;
       }
@@ -403,8 +427,12 @@ Status RefineToAim(const LabelImage& image, const TissueComponents& components, 
     result.OverlongTets = CountOverlongEdges(hierarchy.Points(), mesh.Tets, mesh.Labels, image, params);
     // Tets that making the labels sound gave to a tissue may pass its edge limit: split them and
     // refine again, from a fresh sampling (the owners are renumbered by now).
-    if (result.OverlongTets == 0 || round == EdgeLimitRounds ||
-      !SplitOverlongTets(image, params, hierarchy, mesh))
+    bool again = result.OverlongTets > 0 && round < EdgeLimitRounds && SplitOverlongTets(image, params, hierarchy, mesh);
+    if (params.Ranks)
+    {
+      again = params.Ranks->Any(again); // every rank refines again, or none
+    }
+    if (!again)
     {
       break;
     }

@@ -12,10 +12,12 @@
 #include "cbc3d/base/Progress.h"
 #include "cbc3d/base/Status.h"
 #include "cbc3d/base/TetMesh.h"
+#include "cbc3d/refinement/RankPasses.h"
 
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -54,6 +56,8 @@ struct RefinementParams
   int NumberOfThreads = 0;
   /// Stop refining before the mesh would need more memory than this (bytes); 0 = half the machine.
   std::size_t MemoryLimitBytes = 0;
+  /// Over MPI ranks: the decisions every rank's passes share (RankPasses.h); null on one process.
+  std::shared_ptr<const RankPasses> Ranks;
 
   /// The fidelity target of a tissue.
   double FidelityOf(std::int32_t label) const
