@@ -37,11 +37,7 @@ bool PlacePoints(const std::vector<vtkUnstructuredGrid*>& pieces, vtkPoints* poi
   vtkIdType count = 0;
   for (vtkUnstructuredGrid* piece : pieces)
   {
-    vtkDataArray* ids = piece->GetPointData()->GetGlobalIds();
-    if (!ids)
-    {
-      ids = piece->GetPointData()->GetArray(vtkCBC3DArrayNames::GlobalIds);
-    }
+    vtkDataArray* ids = piece->GetPointData()->GetArray(vtkCBC3DArrayNames::GlobalIds);
     if (!ids || ids->GetNumberOfTuples() != piece->GetNumberOfPoints())
     {
       error = "the ranks' pieces carry no GlobalIds point array to merge them by (mesh with CBC3D Image To Mesh under MPI)";

@@ -85,7 +85,6 @@ struct vtkCBC3DMesher::Piece
   int WholeUpper[3] = { -1, -1, -1 };
   bool HasTissue = false;
   std::vector<std::int64_t> CutKeys;
-  vtkCBC3DSeams::SeamReport Seams;
   std::shared_ptr<const cbc3d::RankPasses> Passes;
 };
 
@@ -197,7 +196,7 @@ bool vtkCBC3DMesher::PreparePiece(vtkImageData* image, vtkInformation* inputInfo
   return true;
 }
 
-bool vtkCBC3DMesher::FinishStage(vtkAlgorithm*, const char* name, const std::string& error, Piece* piece)
+bool vtkCBC3DMesher::FinishStage(const char* name, const std::string& error, Piece* piece)
 {
   if (!error.empty())
   {
@@ -306,7 +305,7 @@ bool vtkCBC3DMesher::RunStages(vtkImageData* image, Piece* piece, vtkUnstructure
       output->Initialize();
       return true;
     }
-    if (!this->FinishStage(filter, stages[s].Name, error, piece))
+    if (!this->FinishStage(stages[s].Name, error, piece))
     {
       return false;
     }
@@ -383,15 +382,16 @@ bool vtkCBC3DMesher::NamePiecePoints(vtkImageData* image, vtkAlgorithm* lattice,
     }
     vtkCBC3DPieces::AddLatticeKeys(mesh, keys, error);
   }
-  return this->FinishStage(lattice, "Global point ids", error, piece);
+  return this->FinishStage("Global point ids", error, piece);
 }
 
 bool vtkCBC3DMesher::KeepOwnTets(vtkSmartPointer<vtkUnstructuredGrid>& mesh, Piece* piece)
 {
   vtkNew<vtkUnstructuredGrid> owned;
   std::string error;
+  vtkCBC3DSeams::SeamReport report;
   if (!vtkCBC3DSeams::KeepOwnedTets(
-        piece->Controller, piece->Plan.Axis, piece->CutKeys, mesh, owned, piece->Seams, error))
+        piece->Controller, piece->Plan.Axis, piece->CutKeys, mesh, owned, report, error))
   {
     if (piece->Controller->GetLocalProcessId() == 0)
     {

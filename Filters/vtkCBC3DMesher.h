@@ -157,7 +157,7 @@ private:
   struct Piece;
   bool PreparePiece(vtkImageData* image, vtkInformation* inputInfo, Piece& piece);
   bool RunStages(vtkImageData* image, Piece* piece, vtkUnstructuredGrid* output);
-  bool FinishStage(vtkAlgorithm* filter, const char* name, const std::string& error, Piece* piece);
+  bool FinishStage(const char* name, const std::string& error, Piece* piece);
   void PrepareStage(vtkCBC3DAlgorithm* filter, const char* arrayName, bool imageOnPort1) const;
   std::string RunStage(vtkAlgorithm* filter, const char* name, double shift, double scale);
   bool NamePiecePoints(vtkImageData* image, vtkAlgorithm* lattice, vtkUnstructuredGrid* mesh, Piece* piece);

@@ -9,8 +9,6 @@
 # the ranks cannot do yet (deformation, a tet budget), ends on every rank, says so once and
 # leaves no file.
 import os
-import shutil
-import subprocess
 import sys
 import tempfile
 
@@ -23,16 +21,12 @@ from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkUnstructuredGrid
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cbc3d_testing import Checks, dihedral_angles, shared_data_or_skip  # noqa: E402
+from cbc3d_testing import Checks, dihedral_angles, mpi_programs_or_skip, run_mpi_mesh, shared_data_or_skip  # noqa: E402,E501
 
 import meshio  # noqa: E402
 
 SHARED = shared_data_or_skip()
-MPIEXEC, PVBATCH = shutil.which("mpiexec"), shutil.which("pvbatch")
-if not MPIEXEC or not PVBATCH:
-    print("SKIP: mpiexec or pvbatch not found")
-    sys.exit(77)
-DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "mpi_mesh.py")
+mpi_programs_or_skip("pvbatch")
 PLUGIN = os.environ["CBC3D_PLUGIN"]
 LoadPlugin(PLUGIN, remote=False, ns=globals())
 # Over ranks the mesher stops after refinement (no deformation yet): the cases at the paper's
@@ -50,11 +44,7 @@ CASES = [
 
 
 def run(ranks, image, outputs, settings):
-    command = [MPIEXEC, "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), PVBATCH, DRIVER, PLUGIN,
-               os.path.join(SHARED, image)] + outputs + settings
-    # pvpython runs as an MPI singleton: its OMPI_/PMIX_ variables would make mpiexec fail.
-    env = {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_", "ORTE_"))}
-    return subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=600, env=env)
+    return run_mpi_mesh(ranks, os.path.join(SHARED, image), outputs, settings)
 
 
 def read_msh(path):

@@ -3,39 +3,30 @@
 # the whole mesh, spread over both ranks: as many tets as a serial run writes.
 import os
 import random
-import shutil
 import subprocess
 import sys
 import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cbc3d_testing import Checks, shared_data_or_skip  # noqa: E402
+from cbc3d_testing import Checks, mpi_environment, mpi_programs_or_skip, run_mpi_mesh, shared_data_or_skip  # noqa: E402,E501
 
 import meshio  # noqa: E402
 from paraview.simple import Connect, Disconnect, LoadPlugin  # noqa: E402
 
 SHARED = shared_data_or_skip()
-MPIEXEC, PVSERVER, PVBATCH = shutil.which("mpiexec"), shutil.which("pvserver"), shutil.which("pvbatch")
-if not (MPIEXEC and PVSERVER and PVBATCH):
-    print("SKIP: mpiexec, pvserver or pvbatch not found")
-    sys.exit(77)
+MPIEXEC, PVSERVER = mpi_programs_or_skip("pvserver")
 PLUGIN = os.environ["CBC3D_PLUGIN"]
 IMAGE = os.path.join(SHARED, "cbc3d-ventricles.nii.gz")
-DRIVER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "mpi_mesh.py")
-# pvpython runs as an MPI singleton: its OMPI_/PMIX_ variables would make mpiexec fail.
-ENV = {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_", "ORTE_"))}
 
 check = Checks()
 with tempfile.TemporaryDirectory() as work:
     serial = os.path.join(work, "serial.msh")
-    subprocess.run([MPIEXEC, "--allow-run-as-root", "-n", "1", PVBATCH, DRIVER, PLUGIN, IMAGE, serial,
-                    "DeformationIterations=0"], env=ENV, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                   timeout=300)
+    run_mpi_mesh(1, IMAGE, [serial], ["DeformationIterations=0"], timeout=300)
     serial_tets = sum(len(b.data) for b in meshio.read(serial).cells if b.type == "tetra")
     port = random.randint(20000, 40000)
     server = subprocess.Popen([MPIEXEC, "--allow-run-as-root", "--oversubscribe", "-n", "2", PVSERVER,
-                               "--server-port=%d" % port], env=ENV, stdout=subprocess.PIPE,
+                               "--server-port=%d" % port], env=mpi_environment(), stdout=subprocess.PIPE,
                               stderr=subprocess.STDOUT, text=True)
     try:
         # pvserver says when it listens.

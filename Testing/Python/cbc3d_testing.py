@@ -131,3 +131,37 @@ def kuhn_mesh(mask):
     flip = np.einsum("ij,ij->i", p[:, 1] - p[:, 0], np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 0])) < 0
     tets[flip] = tets[flip][:, [1, 0, 2, 3]]
     return points, tets, np.repeat(mask[tuple(voxels.T)], 6)
+
+
+def mpi_programs_or_skip(*programs):
+    """The paths of mpiexec and the named programs (pvbatch, pvserver); exits 77 (skipped) with a
+    message where one is missing."""
+    import shutil
+
+    paths = [shutil.which(name) for name in ("mpiexec",) + programs]
+    if not all(paths):
+        print("SKIP: %s not found" % ", ".join(n for n, p in zip(("mpiexec",) + programs, paths) if not p))
+        sys.exit(77)
+    return paths
+
+
+def mpi_environment():
+    """This process's environment for a child mpiexec: pvpython runs as an MPI singleton, and its
+    OMPI_/PMIX_ variables would make mpiexec fail."""
+    import os
+
+    return {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_", "ORTE_"))}
+
+
+def run_mpi_mesh(ranks, image, outputs, settings, timeout=600):
+    """`mpiexec -n RANKS pvbatch mpi_mesh.py` on an image (the one-shot filter, SaveData to each
+    output); its output in `.stdout`, stderr joined."""
+    import os
+    import subprocess
+
+    mpiexec, pvbatch = mpi_programs_or_skip("pvbatch")
+    driver = os.path.join(os.path.dirname(os.path.abspath(__file__)), "mpi_mesh.py")
+    command = [mpiexec, "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), pvbatch, driver,
+               os.environ["CBC3D_PLUGIN"], image] + outputs + settings
+    return subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=timeout,
+                          env=mpi_environment())

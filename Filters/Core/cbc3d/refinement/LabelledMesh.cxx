@@ -107,12 +107,12 @@ void CountRankSlab(const LabelImage& image, const TissueComponents& components, 
   for (const auto& run : components.Runs)
   {
     const std::array<int, 3> first = image.VoxelCoordinates(run.First);
-    std::int64_t voxels = 0;
-    for (std::int64_t v = 0; v <= run.Last - run.First; ++v)
+    const std::int64_t length = run.Last - run.First + 1;
+    // Runs go along x: only slabs across x cut one; another axis keeps or leaves it whole.
+    std::int64_t voxels = axis != 0 && ranks.Owns(image.Spacing[axis] * first[axis]) ? length : 0;
+    for (std::int64_t v = 0; axis == 0 && v < length; ++v)
     {
-      // Runs go along x: only slabs across x cut one.
-      const int index = first[axis] + (axis == 0 ? int(v) : 0);
-      voxels += ranks.Owns(image.Spacing[axis] * index);
+      voxels += ranks.Owns(image.Spacing[0] * (first[0] + v));
     }
     inImage[components.Label[run.Component]] += double(voxels) * double(VoxelWeight);
   }
