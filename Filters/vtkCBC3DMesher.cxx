@@ -298,7 +298,8 @@ bool vtkCBC3DMesher::RunStages(vtkImageData* image, Piece* piece, vtkUnstructure
     }
     else if (piece && filter == refinement.GetPointer())
     {
-      vtkCBC3DPieces::IdlePasses(*piece->Passes, this->BoundaryDistance >= 0.0);
+      cbc3d::RefineWithoutTissue(*piece->Passes, refinement->AsksForRefinement(),
+        refinement->GetBoundaryDistance() >= 0.0, refinement->GetSoundLabels());
     }
     if (this->CheckAbort() && !piece)
     {

@@ -1,6 +1,7 @@
 #include "vtkCBC3DPieces.h"
 
 #include "vtkCBC3DArrayNames.h"
+#include "vtkCBC3DComponentJoin.h"
 
 #include "cbc3d/base/LabelImage.h"
 #include "cbc3d/refinement/RankPasses.h"
@@ -21,6 +22,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <tuple>
 
 namespace vtkCBC3DPieces
 {
@@ -142,6 +144,41 @@ bool AllAgree(vtkMultiProcessController* controller, bool yes)
   return all == 1;
 }
 
+namespace
+{
+// Every rank's rows (a key and N values), as (rank, key, values) in rank order.
+template <std::size_t N>
+std::vector<std::tuple<int, std::int64_t, std::array<double, N>>> GatherRows(
+  vtkMultiProcessController* controller, const std::map<std::int64_t, std::array<double, N>>& rows)
+{
+  vtkNew<vtkDoubleArray> mine, all;
+  mine->InsertNextValue(controller->GetLocalProcessId());
+  mine->InsertNextValue(double(rows.size()));
+  for (const auto& [key, values] : rows)
+  {
+    mine->InsertNextValue(double(key)); // component numbers stay far below 2^53
+    for (const double value : values)
+      mine->InsertNextValue(value);
+  }
+  controller->AllGatherV(mine, all);
+  std::vector<std::tuple<int, std::int64_t, std::array<double, N>>> gathered;
+  for (vtkIdType at = 0; at + 1 < all->GetNumberOfValues();)
+  {
+    const int rank = int(all->GetValue(at));
+    const vtkIdType count = vtkIdType(all->GetValue(at + 1));
+    at += 2;
+    for (vtkIdType r = 0; r < count; ++r, at += 1 + vtkIdType(N))
+    {
+      std::array<double, N> values;
+      for (std::size_t k = 0; k < N; ++k)
+        values[k] = all->GetValue(at + 1 + vtkIdType(k));
+      gathered.emplace_back(rank, std::int64_t(all->GetValue(at)), values);
+    }
+  }
+  return gathered;
+}
+} // namespace
+
 std::shared_ptr<const cbc3d::RankPasses> MakeRankPasses(
   vtkMultiProcessController* controller, const SlabPlan& plan, vtkImageData* image)
 {
@@ -185,25 +222,38 @@ std::shared_ptr<const cbc3d::RankPasses> MakeRankPasses(
     controller->AllReduce(&mine, &all, 1, vtkCommunicator::MAX_OP);
     return all != 0;
   };
-  return ranks;
-}
-
-void IdlePasses(const cbc3d::RankPasses& ranks, bool coverage)
-{
-  // The calls of one refinement round, pass by pass (cbc3d's Refinement.cxx), then the round's.
-  do
-  {
-    do
+  ranks->SumByKey = [controller](std::map<std::int64_t, double>& sums) {
+    std::map<std::int64_t, std::array<double, 1>> rows;
+    for (const auto& [key, value] : sums)
+      rows[key] = { value };
+    sums.clear();
+    for (const auto& [rank, key, row] : GatherRows(controller, rows))
+      sums[key] += row[0];
+  };
+  ranks->BestByKey = [controller](std::map<std::int64_t, std::array<double, 4>>& best) {
+    const auto rows = GatherRows(controller, best);
+    best.clear();
+    for (const auto& [rank, key, row] : rows) // in rank order: the first of equals stays
     {
-      std::map<std::int32_t, std::array<double, 3>> none;
-      ranks.SumByLabel(none);
-      if (coverage)
-      {
-        double far = 0.0, largest = 0.0;
-        ranks.SumAndMax(far, largest);
-      }
-    } while (ranks.Any(false));
-  } while (ranks.Any(false));
+      const auto found = best.find(key);
+      if (found == best.end() || row[0] > found->second[0])
+        best[key] = row;
+    }
+  };
+  ranks->AllValues = [controller](const std::vector<double>& values) {
+    vtkNew<vtkDoubleArray> mine, all;
+    mine->SetNumberOfValues(vtkIdType(values.size()));
+    std::copy(values.begin(), values.end(), mine->GetPointer(0));
+    controller->AllGatherV(mine, all);
+    return std::vector<double>(all->GetPointer(0), all->GetPointer(0) + all->GetNumberOfValues());
+  };
+  int extent[6];
+  image->GetExtent(extent);
+  ranks->JoinComponents = [controller, plan, extent](const cbc3d::LabelImage& piece,
+                            cbc3d::RunComponents& components, std::vector<char>* outside) {
+    vtkCBC3DComponentJoin::Join(controller, plan, extent, piece, components, outside);
+  };
+  return ranks;
 }
 
 LatticeKeys::LatticeKeys(vtkImageData* image, const int wholeLower[3], double h)

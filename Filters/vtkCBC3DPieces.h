@@ -86,11 +86,6 @@ struct LatticeKeys
 std::shared_ptr<const cbc3d::RankPasses> MakeRankPasses(
   vtkMultiProcessController* controller, const SlabPlan& plan, vtkImageData* image);
 
-/// What a rank without tissue does while the others refine: the same collective calls, with
-/// nothing to add, until every rank is done. `coverage`: whether the refinement measures the
-/// boundary distance (BoundaryDistance not negative).
-void IdlePasses(const cbc3d::RankPasses& ranks, bool coverage);
-
 /// One number per key (21 bits an axis), and back.
 bool PackKey(const std::array<std::int64_t, 3>& key, vtkIdType& id);
 std::array<std::int64_t, 3> UnpackKey(vtkIdType id);

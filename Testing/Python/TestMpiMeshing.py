@@ -15,15 +15,13 @@ import tempfile
 import numpy as np
 from paraview import servermanager
 from paraview.simple import LoadPlugin, OpenDataFile, PVTrivialProducer
-from scipy.spatial import cKDTree
 from vtkmodules.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkUnstructuredGrid
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cbc3d_testing import Checks, dihedral_angles, mpi_programs_or_skip, run_mpi_mesh, shared_data_or_skip  # noqa: E402,E501
-
-import meshio  # noqa: E402
+from cbc3d_testing import (Checks, conforming, dihedral_angles, mpi_programs_or_skip, read_msh,  # noqa: E402
+                           run_mpi_mesh, same_mesh, shared_data_or_skip)
 
 SHARED = shared_data_or_skip()
 mpi_programs_or_skip("pvbatch")
@@ -45,19 +43,6 @@ CASES = [
 
 def run(ranks, image, outputs, settings):
     return run_mpi_mesh(ranks, os.path.join(SHARED, image), outputs, settings)
-
-
-def read_msh(path):
-    """Points, tets and each tet's tissue label (from the tissue_<label> physical names)."""
-    mesh = meshio.read(path)
-    label_of = {tag: int(name.split("_")[1]) for name, (tag, dim) in mesh.field_data.items()
-                if name.startswith("tissue_") and dim == 3}
-    tets, labels = [], []
-    for block, tags in zip(mesh.cells, mesh.cell_data["gmsh:physical"]):
-        if block.type == "tetra":
-            tets.append(block.data)
-            labels.append([label_of[t] for t in tags])
-    return mesh.points, np.concatenate(tets), np.concatenate(labels)
 
 
 def xdmf_counts(path):
@@ -103,15 +88,6 @@ def figures(mesh, image):
                 column("TissueMeanSurfaceDistance"))}}
 
 
-def same_mesh(serial, parallel):
-    """The largest distance from a parallel point to the nearest serial point, and the parallel
-    tets that are not serial tets (points matched by position)."""
-    distance, match = cKDTree(serial[0]).query(parallel[0])
-    serial_tets = set(map(tuple, np.sort(serial[1], axis=1)))
-    mapped = np.sort(match[parallel[1]], axis=1)
-    return distance.max(), sum(tuple(t) not in serial_tets for t in mapped)
-
-
 def judge(check, label, serial, parallel, half_voxel):
     """The rule for meshes judged equal to the serial run's."""
     check(abs(parallel["tets"] - serial["tets"]) <= 0.01 * serial["tets"],
@@ -126,16 +102,6 @@ def judge(check, label, serial, parallel, half_voxel):
               other[3] <= 1.05 * mean + 1e-9 and other[1] <= h + half_voxel,
               "%s: tissue %d: volume %.6g (serial %.6g), Hausdorff %.3g/%.3g/%.3g mm (serial %.3g/%.3g/%.3g)" % (
                   label, tissue, other[0], volume, other[1], other[2], other[3], h, h95, mean))
-
-
-def conforming(tets):
-    """Faces in more than two tets, and boundary edges not in exactly two boundary triangles."""
-    faces = np.sort(np.concatenate([tets[:, [1, 2, 3]], tets[:, [0, 2, 3]], tets[:, [0, 1, 3]], tets[:, [0, 1, 2]]]), axis=1)
-    unique, counts = np.unique(faces, axis=0, return_counts=True)
-    boundary = unique[counts == 1]
-    edges = np.sort(np.concatenate([boundary[:, [0, 1]], boundary[:, [1, 2]], boundary[:, [0, 2]]]), axis=1)
-    _, edge_counts = np.unique(edges, axis=0, return_counts=True)
-    return int((counts > 2).sum()), int((edge_counts != 2).sum())
 
 
 check = Checks()

@@ -165,3 +165,43 @@ def run_mpi_mesh(ranks, image, outputs, settings, timeout=600):
                os.environ["CBC3D_PLUGIN"], image] + outputs + settings
     return subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=timeout,
                           env=mpi_environment())
+
+
+def read_msh(path):
+    """Points, tets and each tet's tissue label (from the tissue_<label> physical names)."""
+    import meshio
+    import numpy as np
+
+    mesh = meshio.read(path)
+    label_of = {tag: int(name.split("_")[1]) for name, (tag, dim) in mesh.field_data.items()
+                if name.startswith("tissue_") and dim == 3}
+    tets, labels = [], []
+    for block, tags in zip(mesh.cells, mesh.cell_data["gmsh:physical"]):
+        if block.type == "tetra":
+            tets.append(block.data)
+            labels.append([label_of[t] for t in tags])
+    return mesh.points, np.concatenate(tets), np.concatenate(labels)
+
+
+def same_mesh(serial, parallel):
+    """The largest distance from a parallel point to the nearest serial point, and the parallel
+    tets that are not serial tets (points matched by position)."""
+    import numpy as np
+    from scipy.spatial import cKDTree
+
+    distance, match = cKDTree(serial[0]).query(parallel[0])
+    serial_tets = set(map(tuple, np.sort(serial[1], axis=1)))
+    mapped = np.sort(match[parallel[1]], axis=1)
+    return distance.max(), sum(tuple(t) not in serial_tets for t in mapped)
+
+
+def conforming(tets):
+    """Faces in more than two tets, and boundary edges not in exactly two boundary triangles."""
+    import numpy as np
+
+    faces = np.sort(np.concatenate([tets[:, [1, 2, 3]], tets[:, [0, 2, 3]], tets[:, [0, 1, 3]], tets[:, [0, 1, 2]]]), axis=1)
+    unique, counts = np.unique(faces, axis=0, return_counts=True)
+    boundary = unique[counts == 1]
+    edges = np.sort(np.concatenate([boundary[:, [0, 1]], boundary[:, [1, 2]], boundary[:, [0, 2]]]), axis=1)
+    _, edge_counts = np.unique(edges, axis=0, return_counts=True)
+    return int((counts > 2).sum()), int((edge_counts != 2).sum())

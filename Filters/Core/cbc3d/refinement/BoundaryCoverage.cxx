@@ -72,8 +72,8 @@ std::map<std::int32_t, std::vector<BoundaryCoverage::Face>> BoundaryCoverage::He
   return surfaces;
 }
 
-void BoundaryCoverage::FindTissueGaps(const Tissue& tissue, const std::vector<Face>& faces,
-  const std::vector<Eigen::Vector3d>& points, double distance, Gaps& gaps) const
+BoundaryCoverage::Predicted BoundaryCoverage::Predict(
+  const Tissue& tissue, const std::vector<Face>& faces, const std::vector<Eigen::Vector3d>& points) const
 {
   // The surface's vertices, numbered 0..n-1 in ascending point order, and where deformation
   // would take each.
@@ -95,53 +95,75 @@ void BoundaryCoverage::FindTissueGaps(const Tissue& tissue, const std::vector<Fa
     }
   }
   const std::int64_t vertexCount = static_cast<std::int64_t>(vertices.size());
-  std::vector<Eigen::Vector3d> predicted(vertexCount);
+  Predicted predicted;
+  predicted.Vertices.resize(vertexCount);
   std::vector<char> stranded(vertexCount, 0);
 #pragma omp parallel for schedule(dynamic, 256) num_threads(ThreadCount(this->Threads))
   for (std::int64_t i = 0; i < vertexCount; ++i)
   {
     const Eigen::Vector3d& x = points[vertices[i]];
     const int nearest = tissue.Grid->Nearest(x, this->Reach);
-    predicted[i] = nearest < 0 ? x : tissue.Centres[nearest];
+    predicted.Vertices[i] = nearest < 0 ? x : tissue.Centres[nearest];
     stranded[i] = nearest < 0;
   }
-  std::vector<Eigen::Vector3d> centroids;
+  predicted.Centroids.reserve(faces.size());
+  predicted.Stranded.reserve(faces.size());
   for (const Face& face : faces)
   {
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    char any = 0;
     for (const PointId p : face.Points)
     {
-      centroid += predicted[index[p]] / 3.0;
-      if (stranded[index[p]])
-      {
-        gaps.StrandedTets.push_back(face.Tet);
-      }
+      centroid += predicted.Vertices[index[p]] / 3.0;
+      any = char(any | stranded[index[p]]);
     }
-    centroids.push_back(centroid);
+    predicted.Centroids.push_back(centroid);
+    predicted.Stranded.push_back(any);
   }
+  return predicted;
+}
 
+void BoundaryCoverage::FindTissueGaps(std::int32_t label, const Tissue& tissue, const std::vector<Face>& faces,
+  const std::vector<Eigen::Vector3d>& points, double distance, Gaps& gaps) const
+{
+  const Predicted predicted = this->Predict(tissue, faces, points);
+  for (std::size_t f = 0; f < faces.size(); ++f)
+  {
+    if (predicted.Stranded[f])
+    {
+      gaps.StrandedTets.push_back(faces[f].Tet);
+    }
+  }
   const double cell = std::max(distance, 1e-6);
-  const PointGrid vertexGrid(predicted, cell), faceGrid(centroids, cell);
+  const PointGrid vertexGrid(predicted.Vertices, cell), faceGrid(predicted.Centroids, cell);
   const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Centres.size());
   std::vector<int> nearestFace(voxelCount, -1);
+  std::vector<char> far(voxelCount, 0);
   const std::vector<int> nearestVertex = vertexGrid.NearestAnyOfAll(tissue.Centres, this->Threads);
   double largest = 0.0; // max and sum reductions are exact: the same for any thread count
-  std::int64_t far = 0;
-#pragma omp parallel for schedule(dynamic, 1024) reduction(max : largest) reduction(+ : far) num_threads(ThreadCount(this->Threads))
+  std::int64_t farCount = 0;
+#pragma omp parallel for schedule(dynamic, 1024) reduction(max : largest) reduction(+ : farCount) num_threads(ThreadCount(this->Threads))
   for (std::int64_t i = 0; i < voxelCount; ++i)
   {
     const Eigen::Vector3d& centre = tissue.Centres[i];
-    const double gap = (predicted[nearestVertex[i]] - centre).norm();
+    const double gap = (predicted.Vertices[nearestVertex[i]] - centre).norm();
     const bool counted = !this->Counted || this->Counted(centre);
     largest = counted ? std::max(largest, gap) : largest;
-    if (gap > distance)
+    if (gap > distance && counted)
     {
-      nearestFace[i] = faceGrid.NearestAny(centre);
-      far += counted;
+      // Over ranks, the ranks find the face together (NearestOwnedFaces).
+      nearestFace[i] = this->Counted ? -1 : faceGrid.NearestAny(centre);
+      far[i] = 1;
+      ++farCount;
     }
   }
   gaps.LargestGap = std::max(gaps.LargestGap, largest);
-  gaps.FarVoxels += far;
+  gaps.FarVoxels += farCount;
+  for (std::int64_t i = 0; this->Counted && i < voxelCount; ++i)
+  {
+    if (far[i])
+      gaps.Far.emplace_back(label, tissue.Centres[i]);
+  }
   std::vector<char> taken(faces.size(), 0);
   for (const int f : nearestFace) // in voxel order: the same for any thread count
   {
@@ -151,6 +173,42 @@ void BoundaryCoverage::FindTissueGaps(const Tissue& tissue, const std::vector<Fa
       gaps.FarFaces.push_back(faces[f]);
     }
   }
+}
+
+std::vector<std::pair<double, BoundaryCoverage::Face>> BoundaryCoverage::NearestOwnedFaces(
+  const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets, const std::vector<std::int32_t>& labels,
+  const std::vector<std::pair<std::int32_t, Eigen::Vector3d>>& voxels, const std::vector<char>& owned) const
+{
+  std::vector<std::pair<double, Face>> nearest(voxels.size(), { std::numeric_limits<double>::infinity(), Face{} });
+  std::map<std::int32_t, std::vector<Face>> surfaces = this->HeldSurfaces(points.size(), tets, labels);
+  for (const auto& [label, tissue] : this->Tissues)
+  {
+    const std::vector<Face>& faces = surfaces[label];
+    if (faces.empty() || tissue.Centres.empty())
+      continue;
+    const Predicted predicted = this->Predict(tissue, faces, points);
+    std::vector<Eigen::Vector3d> centroids;
+    std::vector<std::size_t> faceOf;
+    for (std::size_t f = 0; f < faces.size(); ++f)
+    {
+      if (owned[faces[f].Tet])
+      {
+        centroids.push_back(predicted.Centroids[f]);
+        faceOf.push_back(f);
+      }
+    }
+    if (centroids.empty())
+      continue;
+    const PointGrid grid(centroids, 2.0 * this->Reach);
+    for (std::size_t v = 0; v < voxels.size(); ++v)
+    {
+      if (voxels[v].first != label)
+        continue;
+      const int found = grid.NearestAny(voxels[v].second);
+      nearest[v] = { (centroids[found] - voxels[v].second).norm(), faces[faceOf[found]] };
+    }
+  }
+  return nearest;
 }
 
 BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>& points,
@@ -170,7 +228,7 @@ BoundaryCoverage::Gaps BoundaryCoverage::Find(const std::vector<Eigen::Vector3d>
         : gaps.LargestGap;
       continue;
     }
-    this->FindTissueGaps(tissue, faces, points, distance, gaps);
+    this->FindTissueGaps(label, tissue, faces, points, distance, gaps);
   }
   std::sort(gaps.StrandedTets.begin(), gaps.StrandedTets.end());
   gaps.StrandedTets.erase(std::unique(gaps.StrandedTets.begin(), gaps.StrandedTets.end()), gaps.StrandedTets.end());

@@ -41,6 +41,9 @@ public:
     std::vector<std::int64_t> StrandedTets; // tissue tets with a surface vertex that cannot reach the boundary
     double LargestGap = 0.0;            // the farthest boundary voxel from the predicted surface (mm)
     std::int64_t FarVoxels = 0;         // boundary voxels farther than the distance from it
+    /// Over MPI ranks (SetCounted): the far voxels of the rank's slab, by tissue, in place of
+    /// their faces, which the ranks find together (NearestOwnedFaces).
+    std::vector<std::pair<std::int32_t, Eigen::Vector3d>> Far;
 
     /// Whether these gaps are narrower than `before`'s: the farthest voxel nearer, or fewer
     /// voxels far. Refinement for the distance stops at a pass that gains neither: the voxels
@@ -62,8 +65,15 @@ public:
     const std::vector<std::int32_t>& labels, double distance) const;
 
   /// Over MPI ranks: the boundary voxels whose gaps LargestGap and FarVoxels count (those of
-  /// the rank's slab); far voxels elsewhere still mark their faces. Unset: all.
+  /// the rank's slab), listed in Gaps::Far when far. Unset: all, and each marks its face.
   void SetCounted(std::function<bool(const Eigen::Vector3d&)> counted) { this->Counted = std::move(counted); }
+
+  /// Over MPI ranks: for each of `voxels` (a tissue and a boundary voxel's centre), the face of
+  /// the tissue's surface nearest to it (by the predicted surface, as Find) among those whose
+  /// tet is `owned`, and its distance; infinity where there is none.
+  std::vector<std::pair<double, Face>> NearestOwnedFaces(const std::vector<Eigen::Vector3d>& points,
+    const std::vector<Tet>& tets, const std::vector<std::int32_t>& labels,
+    const std::vector<std::pair<std::int32_t, Eigen::Vector3d>>& voxels, const std::vector<char>& owned) const;
 
 private:
   struct Tissue
@@ -74,8 +84,17 @@ private:
   /// Per held tissue, the faces between one of its tets and a tet of another label, or nothing.
   std::map<std::int32_t, std::vector<Face>> HeldSurfaces(std::size_t pointCount, const std::vector<Tet>& tets,
     const std::vector<std::int32_t>& labels) const;
+  /// Where deformation would take a tissue's surface: each face's vertices (`stranded` where one
+  /// cannot reach the boundary) and centroid, as the vertices would move.
+  struct Predicted
+  {
+    std::vector<Eigen::Vector3d> Vertices;
+    std::vector<Eigen::Vector3d> Centroids; // per face
+    std::vector<char> Stranded;             // per face
+  };
+  Predicted Predict(const Tissue& tissue, const std::vector<Face>& faces, const std::vector<Eigen::Vector3d>& points) const;
   /// Adds one tissue's gaps, given its surface `faces` (not empty) and boundary voxels.
-  void FindTissueGaps(const Tissue& tissue, const std::vector<Face>& faces,
+  void FindTissueGaps(std::int32_t label, const Tissue& tissue, const std::vector<Face>& faces,
     const std::vector<Eigen::Vector3d>& points, double distance, Gaps& gaps) const;
   std::map<std::int32_t, Tissue> Tissues;
   double Reach;

@@ -94,15 +94,7 @@ void CountRankSlab(const LabelImage& image, const TissueComponents& components, 
   std::map<std::int32_t, double>& shared)
 {
   const int axis = ranks.Axis;
-  const Eigen::Vector3d toAxis = image.Direction.col(axis);
-  std::vector<char> owned(mesh.Tets.size(), 0);
-  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
-  {
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    for (const PointId p : mesh.Tets[t])
-      centre += points[p];
-    owned[t] = ranks.Owns(toAxis.dot(centre / 4.0 - image.Origin));
-  }
+  const std::vector<char> owned = RankOwnedTets(image, points, mesh.Tets, ranks);
   CountTissueVoxelsInTets(image, mesh, threads, inTets, shared, &owned);
   for (const auto& run : components.Runs)
   {
@@ -134,7 +126,34 @@ void CountRankSlab(const LabelImage& image, const TissueComponents& components, 
     shared[label] = values[2];
   }
 }
+
+// Over ranks: a component is in the mesh where any rank finds a voxel of it in a tet of its label.
+void AnyRankHasComponent(const TissueComponents& components, const RankPasses& ranks, std::vector<char>& componentInMesh)
+{
+  std::map<std::int64_t, double> found;
+  for (std::size_t c = 0; c < componentInMesh.size(); ++c)
+    if (componentInMesh[c])
+      found[components.WholeId[c]] = 1.0;
+  ranks.SumByKey(found);
+  for (std::size_t c = 0; c < componentInMesh.size(); ++c)
+    componentInMesh[c] = found.count(components.WholeId[c]) > 0;
+}
 } // namespace
+
+std::vector<char> RankOwnedTets(const LabelImage& image, const std::vector<Eigen::Vector3d>& points,
+  const std::vector<Tet>& tets, const RankPasses& ranks)
+{
+  const Eigen::Vector3d toAxis = image.Direction.col(ranks.Axis);
+  std::vector<char> owned(tets.size(), 0);
+  for (std::size_t t = 0; t < tets.size(); ++t)
+  {
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (const PointId p : tets[t])
+      centre += points[p];
+    owned[t] = ranks.Owns(toAxis.dot(centre / 4.0 - image.Origin));
+  }
+  return owned;
+}
 
 // Returns false when `keepGoing` (polled from thread 0) asked to stop.
 bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threads,
@@ -259,6 +278,10 @@ std::map<std::int32_t, TissueFidelity> MeasureFidelity(const LabelImage& image,
     found = componentInMesh[component];
     for (std::int64_t v = components.Runs[r].First; !found && v <= components.Runs[r].Last; ++v)
     {
+      if (ranks && !ranks->OwnsVoxel(image, v))
+      {
+        continue; // another rank's voxel: its tet there may be its alone
+      }
       const std::int32_t owner = mesh.OwnerOf(v);
       if (owner >= 0 && mesh.Labels[owner] == components.Label[component])
       {
@@ -267,6 +290,10 @@ std::map<std::int32_t, TissueFidelity> MeasureFidelity(const LabelImage& image,
         found = 1;
       }
     }
+  }
+  if (ranks)
+  {
+    AnyRankHasComponent(components, *ranks, componentInMesh);
   }
   std::map<std::int32_t, TissueFidelity> result;
   for (const auto& [label, voxels] : inImage)

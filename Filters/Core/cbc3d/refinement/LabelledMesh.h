@@ -63,9 +63,14 @@ bool SampleAll(const LabelImage& image, const RedGreenMesh& hierarchy, int threa
 /// After the passes: every voxel's owner as its tet, and each tet its own id.
 void ResolveOwners(LabelledMesh& mesh, int threads);
 
+/// The tets whose centres lie in this rank's slab: the ones it keeps.
+std::vector<char> RankOwnedTets(const LabelImage& image, const std::vector<Eigen::Vector3d>& points,
+  const std::vector<Tet>& tets, const RankPasses& ranks);
+
 /// F1 and F2 of every tissue, and which of its components (of `minimumVoxels` or more) have a
 /// voxel in a tet of their label (`componentInMesh`, per component). With `ranks` (and the
-/// mesh's `points`), F1 and F2 count this rank's slab and are summed over the ranks.
+/// mesh's `points`), F1 and F2 count this rank's slab and are summed over the ranks, and a
+/// component is in the mesh where a voxel of the whole component in any rank's slab is.
 std::map<std::int32_t, TissueFidelity> MeasureFidelity(const LabelImage& image,
   const TissueComponents& components, int minimumVoxels, const LabelledMesh& mesh, int threads,
   std::vector<char>& componentInMesh, const RankPasses* ranks = nullptr,

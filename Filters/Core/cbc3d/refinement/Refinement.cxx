@@ -6,6 +6,7 @@
 #include "cbc3d/base/Parallel.h"
 #include "cbc3d/lattice/RedGreenMesh.h"
 #include "cbc3d/refinement/BoundaryCoverage.h"
+#include "cbc3d/refinement/CoveragePasses.h"
 #include "cbc3d/refinement/EdgeLimits.h"
 #include "cbc3d/refinement/KeptComponents.h"
 #include "cbc3d/refinement/LabelledMesh.h"
@@ -14,6 +15,7 @@
 #include "cbc3d/refinement/TetBudget.h"
 #include "cbc3d/sampling/TetVoxelSampler.h"
 #include "cbc3d/sampling/TissueComponents.h"
+#include "cbc3d/soundlabels/ImageRegions.h"
 #include "cbc3d/soundlabels/ManifoldRepair.h"
 #include "cbc3d/soundlabels/SoundLabels.h"
 
@@ -92,74 +94,6 @@ std::vector<char> MarkForFidelity(const LabelImage& image, const TissueComponent
   return marked;
 }
 
-// How refining for the boundary distance stands between passes: the gaps the last pass found
-// (FarVoxels -1: none looked for yet), and whether a pass stopped gaining.
-struct CoverageProgress
-{
-  double LargestGap = 0.0;
-  std::int64_t FarVoxels = -1;
-  bool Stalled = false; // the later passes refine for fidelity alone
-};
-
-// Where the surface would stay far from the image boundary (more than `distance`): a new
-// surface vertex on the longest edge of the face nearest to a far boundary voxel (a green split
-// of the tets around the edge, into `bisect`), or a red split of the leaf where that edge is not
-// one of the leaf's own; and a red split of the tets with a vertex that cannot reach the
-// boundary. Returns whether any split was wanted (at the depth limit or not); none once a pass
-// brings neither the farthest voxel nearer nor fewer voxels far (`progress` then stalls).
-bool MarkForCoverage(const BoundaryCoverage& coverage, double distance, const RedGreenMesh& hierarchy,
-  const LabelledMesh& mesh, double minimumEdge, CoverageProgress& progress, std::vector<char>& marked,
-  std::vector<std::pair<PointId, PointId>>& bisect, const RankPasses* ranks)
-{
-  const auto& x = hierarchy.Points();
-  BoundaryCoverage::Gaps gaps = coverage.Find(x, mesh.Tets, mesh.Labels, distance);
-  if (ranks)
-  {
-    // Progress is the whole image's: every rank stalls, or goes on, together.
-    double far = double(gaps.FarVoxels);
-    ranks->SumAndMax(far, gaps.LargestGap);
-    gaps.FarVoxels = std::llround(far);
-  }
-  BoundaryCoverage::Gaps before;
-  before.LargestGap = progress.LargestGap;
-  before.FarVoxels = progress.FarVoxels;
-  progress.LargestGap = gaps.LargestGap;
-  progress.FarVoxels = gaps.FarVoxels;
-  if (before.FarVoxels >= 0 && !gaps.NarrowerThan(before))
-  {
-    progress.Stalled = true;
-    return false;
-  }
-  const bool wanted = !gaps.FarFaces.empty() || !gaps.StrandedTets.empty();
-  for (const std::int64_t t : gaps.StrandedTets)
-  {
-    marked[mesh.Source[t]] = 1;
-  }
-  for (const BoundaryCoverage::Face& face : gaps.FarFaces)
-  {
-    int longest = 0;
-    auto length = [&](int e) { return (x[face.Points[e]] - x[face.Points[(e + 1) % 3]]).norm(); };
-    for (int e = 1; e < 3; ++e)
-    {
-      longest = length(e) > length(longest) ? e : longest;
-    }
-    const PointId a = face.Points[longest], b = face.Points[(longest + 1) % 3];
-    const std::int64_t red = mesh.Source[face.Tet];
-    const Tet& corners = hierarchy.Reds()[red].Points;
-    const bool leafEdge = std::count(corners.begin(), corners.end(), a) > 0 &&
-      std::count(corners.begin(), corners.end(), b) > 0;
-    if (!leafEdge)
-    {
-      marked[red] = 1;
-    }
-    else if (length(longest) / 2.0 >= minimumEdge * (1.0 - 1e-9))
-    {
-      bisect.emplace_back(a, b);
-    }
-  }
-  return wanted;
-}
-
 // The tissue tets, their points renumbered, and each one's red level.
 void KeepTissueTets(const LabelImage& image, const RedGreenMesh& hierarchy, const LabelledMesh& mesh,
   TetMesh& out, RefinementResult& result)
@@ -189,35 +123,6 @@ void KeepTissueTets(const LabelImage& image, const RedGreenMesh& hierarchy, cons
     result.Levels.push_back(static_cast<std::uint8_t>(level));
     result.DeepestLevel = std::max(result.DeepestLevel, level);
   }
-}
-
-// The check of the boundary distance (0: 3/8 of the lattice's longest edge, recorded in
-// `result`); none where the bound is negative.
-std::unique_ptr<BoundaryCoverage> MakeCoverage(const LabelImage& image, const TissueComponents& components,
-  const RefinementParams& params, const RedGreenMesh& hierarchy, RefinementResult& result)
-{
-  if (params.BoundaryDistance < 0.0)
-  {
-    return nullptr;
-  }
-  double longest = 0.0;
-  for (std::size_t red = 0; red < hierarchy.Reds().size(); ++red)
-  {
-    longest = std::max(longest, hierarchy.LongestEdge(red));
-  }
-  result.BoundaryDistance =
-    params.BoundaryDistance > 0.0 ? params.BoundaryDistance : DefaultBoundaryDistance(longest);
-  // Deformation moves a vertex by about an element size: the lattice's shortest edge.
-  auto coverage = std::make_unique<BoundaryCoverage>(image, components, params.MinimumComponentVoxels,
-    hierarchy.ShortestEdge(0), params.NumberOfThreads);
-  if (const RankPasses* ranks = params.Ranks.get())
-  {
-    const Eigen::Vector3d axis = image.Direction.col(ranks->Axis);
-    coverage->SetCounted([&image, ranks, axis](const Eigen::Vector3d& centre) {
-      return ranks->Owns(axis.dot(centre - image.Origin));
-    });
-  }
-  return coverage;
 }
 
 // Why the passes ended. The words come last (StopReason), when the fidelity after the sound
@@ -313,7 +218,7 @@ bool SplitOnePass(const LabelImage& image, const TissueComponents& components, c
   const RankPasses* ranks = params.Ranks.get();
   const bool measure = coverage && !progress.Stalled;
   const bool coverageWanted =
-    measure && MarkForCoverage(*coverage, distance, hierarchy, mesh, limits.MinimumEdge, progress, marked, bisect, ranks);
+    measure && MarkForCoverage(image, *coverage, distance, hierarchy, mesh, limits.MinimumEdge, progress, marked, bisect, ranks);
   if (coverage && !measure && ranks)
   {
     double far = 0.0, largest = 0.0; // one call a pass on every rank, measuring or not
@@ -357,8 +262,8 @@ bool SplitOnePass(const LabelImage& image, const TissueComponents& components, c
 }
 
 // One refinement of the (ringed) lattice, the passes aiming at `budgetAim` of the tet budget.
-Status RefineToAim(const LabelImage& image, const TissueComponents& components, const TetMesh& ringed,
-  const RefinementParams& params, double budgetAim, TetMesh& out, RefinementResult& result,
+Status RefineToAim(const LabelImage& image, const TissueComponents& components, const ImageRegions* regions,
+  const TetMesh& ringed, const RefinementParams& params, double budgetAim, TetMesh& out, RefinementResult& result,
   const Progress& progress)
 {
   out = TetMesh();
@@ -414,15 +319,16 @@ Status RefineToAim(const LabelImage& image, const TissueComponents& components, 
     ResolveOwners(mesh, params.NumberOfThreads);
     // Spikes on the surface would keep their tips off the image boundary through deformation.
     const auto across = FaceNeighbours(mesh.Tets, hierarchy.Points().size(), params.NumberOfThreads);
-    if (RemoveSurfaceEars(mesh.Tets, across, hierarchy.Points().size(), mesh.Labels,
-          [&](std::int32_t label) { return IsTissueLabel(image, label); }, NoLabel) > 0)
+    bool earsRemoved = RemoveSurfaceEars(mesh.Tets, across, hierarchy.Points().size(), mesh.Labels,
+                         [&](std::int32_t label) { return IsTissueLabel(image, label); }, NoLabel) > 0;
+    if (params.Ranks ? params.Ranks->Any(earsRemoved) : earsRemoved)
     {
-      fidelity = MeasureFidelity(
-        image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads, componentInMesh);
+      fidelity = MeasureFidelity(image, components, params.MinimumComponentVoxels, mesh, params.NumberOfThreads,
+        componentInMesh, params.Ranks.get(), &hierarchy.Points());
     }
 
-    fidelity = KeepComponentsAndMakeSound(image, components, params, hierarchy.Points(), across, mesh, componentInMesh,
-      result.Relabelled);
+    fidelity = KeepComponentsAndMakeSound(image, components, regions, params, hierarchy.Points(), across, mesh,
+      componentInMesh, result.Relabelled);
 
     result.OverlongTets = CountOverlongEdges(hierarchy.Points(), mesh.Tets, mesh.Labels, image, params);
     // Tets that making the labels sound gave to a tissue may pass its edge limit: split them and
@@ -447,7 +353,9 @@ Status RefineToAim(const LabelImage& image, const TissueComponents& components, 
   const bool belowTarget = std::any_of(result.Tissues.begin(), result.Tissues.end(),
     [&](const TissueFidelity& t) { return t.F1 < params.FidelityOf(t.Label) || t.F2 < params.FidelityOf(t.Label); });
   result.StopReason = StopReason(passesEnd, coverage != nullptr, coverageProgress, belowTarget);
-  if (out.Tets.empty())
+  // Over ranks, a rank whose piece holds only the edge of a tissue may keep no tet.
+  const bool none = out.Tets.empty();
+  if (params.Ranks ? !params.Ranks->Any(!none) : none)
   {
     return Status::Error("no tet holds a majority of tissue voxels; use a smaller lattice size");
   }
@@ -477,12 +385,24 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   {
     return valid;
   }
-  const TissueComponents components = FindTissueComponents(image);
+  TissueComponents components = FindTissueComponents(image);
   const Status present = CheckTissuesPresent(components, params);
   if (!present.IsOk())
   {
     return present;
   }
+  // The image's regions, for the sound labels: its components, and its cavities.
+  std::unique_ptr<ImageRegions> regions;
+  BackgroundComponents gaps = params.SoundLabels ? FindBackgroundComponents(image) : BackgroundComponents();
+  if (params.Ranks)
+  {
+    params.Ranks->JoinComponents(image, components, nullptr);
+    if (params.SoundLabels)
+      params.Ranks->JoinComponents(image, gaps, &gaps.TouchesBorder);
+  }
+  if (params.SoundLabels)
+    regions = std::make_unique<ImageRegions>(
+      FindImageRegions(components, std::move(gaps), params.MinimumComponentVoxels, NoLabel));
   // Sound labels need background on both sides of a thin sheet of tissue to thicken it into.
   TetMesh ringed = lattice;
   if (params.SoundLabels)
@@ -493,7 +413,7 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
   double aim = BudgetAim;
   for (int attempt = 0;; ++attempt)
   {
-    const Status status = RefineToAim(image, components, ringed, params, aim, out, result, progress);
+    const Status status = RefineToAim(image, components, regions.get(), ringed, params, aim, out, result, progress);
     const auto tets = static_cast<std::int64_t>(out.Tets.size());
     if (!status.IsOk() || params.MaximumTets <= 0 || tets <= params.MaximumTets || attempt == BudgetAttempts)
     {

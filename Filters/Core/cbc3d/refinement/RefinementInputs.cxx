@@ -3,6 +3,7 @@
 #include "cbc3d/refinement/EdgeLimits.h"
 
 #include <cmath>
+#include <map>
 #include <set>
 #include <string>
 
@@ -61,7 +62,17 @@ Status ValidateInputs(const LabelImage& image, const TetMesh& lattice, const Ref
 // A per-tissue target for a label with no voxel in the image is a mistake worth naming.
 Status CheckTissuesPresent(const TissueComponents& components, const RefinementParams& params)
 {
-  const std::set<std::int32_t> present(components.Label.begin(), components.Label.end());
+  std::set<std::int32_t> present(components.Label.begin(), components.Label.end());
+  if (params.Ranks)
+  {
+    // A rank's piece may lack a tissue that another's holds.
+    std::map<std::int64_t, double> labels;
+    for (const std::int32_t label : present)
+      labels[label] = 1.0;
+    params.Ranks->SumByKey(labels);
+    for (const auto& entry : labels)
+      present.insert(std::int32_t(entry.first));
+  }
   for (const auto* targets : { &params.FidelityByTissue, &params.MaximumEdge.ByTissue })
   {
     for (const auto& entry : *targets)

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <limits>
 
 namespace cbc3d
 {
@@ -156,12 +157,22 @@ BackgroundComponents FindBackgroundComponents(const LabelImage& image)
   const BoxRuns box = CollectRuns(
     image, lower, upper, [&](std::int32_t label) { return image.IsBackground(label); },
     [](std::int32_t) { return 0; });
+  // A side of a piece where the whole image's tissue goes on is no border (see the header).
+  std::array<int, 3> borderLower = lower, borderUpper = upper;
+  for (int axis = 0; image.HasLatticeBox && axis < 3; ++axis)
+  {
+    const int last = image.Dimensions[axis] - 1;
+    if (lower[axis] == 0 && image.LatticeBoxLower[axis] < 0)
+      borderLower[axis] = std::numeric_limits<int>::min();
+    if (upper[axis] == last && image.LatticeBoxUpper[axis] > last)
+      borderUpper[axis] = std::numeric_limits<int>::max();
+  }
   NumberComponents(
     image, lower, upper, box, result,
     [&](std::int32_t, const BoxRuns::Run&, int, int) { result.TouchesBorder.push_back(0); },
     [&](std::int32_t component, const BoxRuns::Run& run, int j, int k) {
-      if (run.Start == lower[0] || run.End == upper[0] || j == lower[1] || j == upper[1] ||
-        k == lower[2] || k == upper[2])
+      if (run.Start == borderLower[0] || run.End == borderUpper[0] || j == borderLower[1] || j == borderUpper[1] ||
+        k == borderLower[2] || k == borderUpper[2])
         result.TouchesBorder[component] = 1;
     });
   return result;

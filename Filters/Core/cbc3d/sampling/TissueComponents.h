@@ -21,6 +21,9 @@ struct RunComponents
     std::int32_t Component;
   };
   std::vector<Run> Runs;
+  /// Over MPI ranks (RankPasses::JoinComponents): per component of this piece, its number in the
+  /// whole image, shared by the pieces of one component. Empty otherwise.
+  std::vector<std::int64_t> WholeId;
 
   /// Calls visit(voxel, component) for every voxel, ascending.
   template <typename Visit>
@@ -54,7 +57,9 @@ struct BackgroundComponents : RunComponents
 
 /// Labels the face-connected components of the background as FindTissueComponents does the
 /// tissues'; the ones that reach the layer around the tissues' box (or the image border) are the
-/// outside (TouchesBorder), the others cavities.
+/// outside (TouchesBorder), the others cavities. On a piece of a larger image (HasLatticeBox),
+/// a side where the whole image's tissue goes on is no border: what lies beyond is another
+/// piece's to say (RankPasses::JoinComponents).
 BackgroundComponents FindBackgroundComponents(const LabelImage& image);
 } // namespace cbc3d
 

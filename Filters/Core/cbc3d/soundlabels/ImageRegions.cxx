@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <unordered_map>
+#include <utility>
 
 namespace cbc3d
 {
@@ -17,9 +18,15 @@ bool ImageRegions::HasCavity() const
 ImageRegions FindImageRegions(const LabelImage& image, const TissueComponents& tissues,
   int minimumVoxels, std::int32_t background)
 {
+  return FindImageRegions(tissues, FindBackgroundComponents(image), minimumVoxels, background);
+}
+
+ImageRegions FindImageRegions(const TissueComponents& tissues, BackgroundComponents gaps, int minimumVoxels,
+  std::int32_t background)
+{
   ImageRegions regions;
   regions.Tissues = &tissues;
-  regions.Gaps = FindBackgroundComponents(image);
+  regions.Gaps = std::move(gaps);
   const std::int32_t tissueCount = static_cast<std::int32_t>(tissues.Label.size());
   for (std::int32_t c = 0; c < tissueCount; ++c)
   {
@@ -27,11 +34,11 @@ ImageRegions FindImageRegions(const LabelImage& image, const TissueComponents& t
     regions.Speck.push_back(tissues.Size[c] < minimumVoxels);
   }
   // Every background component has a region (unused where it is not kept).
-  const BackgroundComponents& gaps = regions.Gaps;
-  for (std::size_t c = 0; c < gaps.Size.size(); ++c)
+  const BackgroundComponents& kept = regions.Gaps;
+  for (std::size_t c = 0; c < kept.Size.size(); ++c)
   {
-    const bool kept = !gaps.TouchesBorder[c] && gaps.Size[c] >= minimumVoxels;
-    regions.RegionOfGap.push_back(kept ? tissueCount + std::int32_t(c) : -1);
+    const bool isKept = !kept.TouchesBorder[c] && kept.Size[c] >= minimumVoxels;
+    regions.RegionOfGap.push_back(isKept ? tissueCount + std::int32_t(c) : -1);
     regions.ClassOfRegion.push_back(background);
     regions.Speck.push_back(0);
   }

@@ -33,6 +33,9 @@ struct ImageRegions
 /// `background`.
 ImageRegions FindImageRegions(const LabelImage& image, const TissueComponents& tissues,
   int minimumVoxels, std::int32_t background);
+/// The same from the background's components, found already (FindBackgroundComponents).
+ImageRegions FindImageRegions(const TissueComponents& tissues, BackgroundComponents gaps, int minimumVoxels,
+  std::int32_t background);
 
 /// Per tet, the background component of the image that most of its background voxels belong to
 /// (`voxelOwner`: the tet owning each voxel centre, or -1): a kept cavity's region,

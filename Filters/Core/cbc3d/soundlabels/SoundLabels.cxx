@@ -21,8 +21,8 @@ std::vector<PointId> VerticesOf(const std::vector<Tet>& tets, const std::vector<
 }
 } // namespace
 
-SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponents& components,
-  int minimumVoxels, const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
+SoundLabelsResult MakeLabelsSound(const LabelImage& image, const ImageRegions& regions,
+  const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
   const std::vector<std::array<std::int64_t, 4>>& across,
   const std::vector<LabelCounts>& counts, const VoxelOwners& voxelOwner,
   const std::map<std::int64_t, std::int32_t>& pinned, std::int32_t background,
@@ -38,7 +38,6 @@ SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponent
     return bonus + (cls == background ? counts[t].Total() - counts[t].TissueTotal(image) : counts[t].Of(cls));
   };
   // The repair must not open a cavity of the image: it reads which cavity each tet stands for.
-  const ImageRegions regions = FindImageRegions(image, components, minimumVoxels, background);
   const std::vector<std::int32_t> regionOfTet = BackgroundRegionOfTets(image, regions, voxelOwner, points, tets, numberOfThreads);
   SoundLabelsResult result;
   ManifoldRepairResult repair = RepairManifoldLabels(

@@ -11,6 +11,7 @@
 #include "cbc3d/base/TetMesh.h"
 #include "cbc3d/sampling/TetVoxelSampler.h"
 #include "cbc3d/sampling/TissueComponents.h"
+#include "cbc3d/soundlabels/ImageRegions.h"
 
 #include <array>
 #include <cstdint>
@@ -31,8 +32,8 @@ struct SoundLabelsResult
 /// the image) so that it is a sound finite-element model: every tissue, the background and so
 /// the body as a whole are manifold at every vertex (no hinge, no non-manifold edge or vertex
 /// on any boundary or interface: see ManifoldRepair.h), and every face-connected piece of a
-/// tissue or of the background stands for a 6-connected component of the image of at least
-/// `minimumVoxels` voxels, or a smaller one (a speck) where the piece lies against another
+/// tissue or of the background stands for a 6-connected component of the image (`regions`,
+/// FindImageRegions with the same `background`) of at least the minimum voxels, or a smaller one (a speck) where the piece lies against another
 /// tissue rather than afloat in the background (other pieces: islands, cavities, the cut-off
 /// ends of a pinch, are given to their neighbours: see StrayComponents.h), and no repair joins
 /// background parts that stand for components the image keeps apart (a cavity and the outside:
@@ -40,8 +41,8 @@ struct SoundLabelsResult
 /// voxel votes (`counts`); `across` is FaceNeighbours(tets); tets in `pinned` (tet -> label:
 /// the tets that stand for a component refinement could not reach) keep their label unless
 /// nothing else works. Returns what it did.
-SoundLabelsResult MakeLabelsSound(const LabelImage& image, const TissueComponents& components,
-  int minimumVoxels, const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
+SoundLabelsResult MakeLabelsSound(const LabelImage& image, const ImageRegions& regions,
+  const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
   const std::vector<std::array<std::int64_t, 4>>& across,
   const std::vector<LabelCounts>& counts, const VoxelOwners& voxelOwner,
   const std::map<std::int64_t, std::int32_t>& pinned, std::int32_t background,
