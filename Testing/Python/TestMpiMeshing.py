@@ -5,7 +5,7 @@
 # volumes within 0.5%, Hausdorff 95th percentiles and means within 5% and maxima within half a
 # voxel (CBC3D Mesh Quality against the image, for both). Most give the serial mesh tet for tet:
 # the ranks share one lattice and their refinement's decisions. A run whose
-# ranks' pieces do not fit (a halo of one cube, too narrow for the brain on 3 ranks), or that asks for what
+# ranks' pieces do not fit (a halo of one cube, too narrow for the k-means head on 3 ranks), or that asks for what
 # the ranks cannot do yet (deformation, a tet budget), ends on every rank, says so once and
 # leaves no file.
 import os
@@ -141,18 +141,18 @@ with tempfile.TemporaryDirectory() as work:
                 os.remove(path)
 
     # What the ranks cannot do yet ends every rank with one error line and no file: pieces that
-    # do not fit (a halo of 1 cube for the brain on 3 ranks), deformation, a tet budget.
+    # do not fit (a halo of 1 cube for the k-means head on 3 ranks), deformation, a tet budget.
     failures = [
-        (3, ["RankHalo=1.0"] + UNDEFORMED, "do not fit"),
-        (2, [], "deformation across MPI ranks"),
-        (2, ["MaximumNumberOfTets=5000"] + UNDEFORMED, "tet budget"),
+        (3, "itk-t1-kmeans-labels.nii.gz", ["RankHalo=1.0"] + UNDEFORMED, "do not fit"),
+        (2, "cbc3d-brain.nii.gz", [], "deformation across MPI ranks"),
+        (2, "cbc3d-brain.nii.gz", ["MaximumNumberOfTets=5000"] + UNDEFORMED, "tet budget"),
     ]
-    for ranks, settings, words in failures:
+    for ranks, image, settings, words in failures:
         failed = os.path.join(work, "failed.msh")
-        result = run(ranks, "cbc3d-brain.nii.gz", [failed], settings)
+        result = run(ranks, image, [failed], settings)
         lines = [line for line in result.stdout.splitlines() if words in line]
         check(result.returncode != 0 and len(lines) == 1 and not os.path.exists(failed),
-              "brain, %d ranks, %s: exit %d, %d lines with '%s', file %s" % (
-                  ranks, " ".join(settings), result.returncode, len(lines), words,
+              "%s, %d ranks, %s: exit %d, %d lines with '%s', file %s" % (
+                  image, ranks, " ".join(settings), result.returncode, len(lines), words,
                   "left" if os.path.exists(failed) else "absent"))
 check.finish()
