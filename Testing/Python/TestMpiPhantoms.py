@@ -3,6 +3,7 @@
 #   - idle: the tissue lies at one end of a long image, so the last slab holds none and the one
 #     before holds tissue in its halo alone. Such ranks make the same collective calls as the
 #     others, with nothing to add; a rank that missed one would hang the run (it is cut off).
+#     Inputs that stop the ranks with tissue (a fidelity for a tissue no slab holds) stop it too.
 #   - rod: a rod one voxel thick runs from a ball in the upper slab into the lower one. The
 #     lower rank's piece sees the rod without the ball: as a component of its own.
 #   - cavity: a closed tube of background inside a tissue, from slab to slab. Each piece sees
@@ -88,4 +89,14 @@ with tempfile.TemporaryDirectory() as work:
             differ = int(np.sum(match != mesh[2]))
             check(differ <= len(mesh[1]) // 1000,
                   "%s: %d tets labelled other than in the serial run (at most 1 in 1,000)" % (label, differ))
+    # A fidelity asked for a tissue that no slab holds stops every rank, the one without tissue
+    # too, with the reason and no file (it hung, before, waiting for the others).
+    image, failed = os.path.join(work, "idle.nii.gz"), os.path.join(work, "failed.msh")
+    try:
+        result = run_mpi_mesh(3, image, [failed], SETTINGS + ["TissueFidelity=7,0.9"], timeout=180)
+        check(result.returncode != 0 and "no voxel of tissue 7" in result.stdout and not os.path.exists(failed),
+              "idle, 3 ranks, a fidelity for tissue 7: exit %d, the reason said, file %s" % (
+                  result.returncode, "left" if os.path.exists(failed) else "absent"))
+    except subprocess.TimeoutExpired:
+        check(False, "idle, 3 ranks, a fidelity for tissue 7: ended within 180 s")
 check.finish()

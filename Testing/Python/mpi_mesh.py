@@ -4,7 +4,8 @@
 
 Each OUTPUT (.msh, .xdmf, ... any extension of CBC3D Solver Mesh) is written once, whole, by
 rank 0 from the ranks' pieces. A Property is one of CBC3D Image To Mesh's (LatticeSize,
-Fidelity, DeformationIterations, RankHalo, ...); BackgroundLabels takes a comma-separated list.
+Fidelity, DeformationIterations, RankHalo, ...); a list property takes its values separated by
+commas (BackgroundLabels=0,1; TissueFidelity=2,0.9).
 Exits 1 when the mesher or a writer fails.
 """
 import sys
@@ -22,10 +23,8 @@ def main():
     mesh = globals()["CBC3DImageToMesh"](Input=reader)
     for setting in settings:
         key, value = setting.split("=", 1)
-        if key == "BackgroundLabels":
-            setattr(mesh, key, [int(v) for v in value.split(",")])
-        else:
-            setattr(mesh, key, float(value) if "." in value else int(value))
+        numbers = [float(v) if "." in v else int(v) for v in value.split(",")]
+        setattr(mesh, key, numbers if "," in value or key == "BackgroundLabels" else numbers[0])
     mesh.UpdatePipeline()
     tets = mesh.GetDataInformation().GetNumberOfCells()
     if tets == 0:

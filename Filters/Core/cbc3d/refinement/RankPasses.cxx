@@ -30,8 +30,12 @@ void PinNothing(const RankPasses& ranks)
 // The calls of RefineMesh (Refinement.cxx) and its parts, in their order.
 void RefineWithoutTissue(const RankPasses& ranks, bool refines, bool coverage, bool soundLabels)
 {
+  if (ranks.Any(false)) // another rank's inputs are not valid
+    return;
   std::map<std::int64_t, double> labels;
   ranks.SumByKey(labels); // the tissues present
+  if (ranks.Any(false)) // a tissue asked for is in no rank's slab
+    return;
   const LabelImage none;
   RunComponents tissues, gaps;
   std::vector<char> outside;

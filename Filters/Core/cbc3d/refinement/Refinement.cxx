@@ -380,14 +380,18 @@ Status RefineMesh(const LabelImage& image, const TetMesh& lattice, const Refinem
 {
   out = TetMesh();
   result = RefinementResult();
+  // Over ranks, inputs that stop one rank stop every rank, a rank without tissue as well.
+  const auto stops = [&params](const Status& status) {
+    return params.Ranks ? params.Ranks->Any(!status.IsOk()) : !status.IsOk();
+  };
   const Status valid = ValidateInputs(image, lattice, params);
-  if (!valid.IsOk())
+  if (stops(valid))
   {
-    return valid;
+    return valid.IsOk() ? Status::Error("another rank's inputs to refinement are not valid") : valid;
   }
   TissueComponents components = FindTissueComponents(image);
   const Status present = CheckTissuesPresent(components, params);
-  if (!present.IsOk())
+  if (stops(present))
   {
     return present;
   }
