@@ -97,8 +97,9 @@ void Join(vtkMultiProcessController* controller, const vtkCBC3DPieces::SlabPlan&
   std::vector<std::int64_t> ownSize(total);
   std::vector<char> reaches(total + 1, 0);
   reaches[theOutside] = 1;
-  const std::int64_t slices = 2 * std::int64_t(extent[2 * ((plan.Axis + 1) % 3) + 1] - extent[2 * ((plan.Axis + 1) % 3)] + 1) *
-    (extent[2 * ((plan.Axis + 2) % 3) + 1] - extent[2 * ((plan.Axis + 2) % 3)] + 1);
+  const int b = (plan.Axis + 1) % 3, c = (plan.Axis + 2) % 3; // the axes across the slabs
+  const std::int64_t slices =
+    2 * std::int64_t(extent[2 * b + 1] - extent[2 * b] + 1) * (extent[2 * c + 1] - extent[2 * c] + 1);
   std::vector<std::vector<std::int64_t>> below(plan.Pieces), above(plan.Pieces);
   vtkIdType at = 0;
   const int borders = plan.Pieces - 1;

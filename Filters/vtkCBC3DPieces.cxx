@@ -22,7 +22,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <tuple>
 
 namespace vtkCBC3DPieces
 {
@@ -144,41 +143,6 @@ bool AllAgree(vtkMultiProcessController* controller, bool yes)
   return all == 1;
 }
 
-namespace
-{
-// Every rank's rows (a key and N values), as (rank, key, values) in rank order.
-template <std::size_t N>
-std::vector<std::tuple<int, std::int64_t, std::array<double, N>>> GatherRows(
-  vtkMultiProcessController* controller, const std::map<std::int64_t, std::array<double, N>>& rows)
-{
-  vtkNew<vtkDoubleArray> mine, all;
-  mine->InsertNextValue(controller->GetLocalProcessId());
-  mine->InsertNextValue(double(rows.size()));
-  for (const auto& [key, values] : rows)
-  {
-    mine->InsertNextValue(double(key)); // component numbers stay far below 2^53
-    for (const double value : values)
-      mine->InsertNextValue(value);
-  }
-  controller->AllGatherV(mine, all);
-  std::vector<std::tuple<int, std::int64_t, std::array<double, N>>> gathered;
-  for (vtkIdType at = 0; at + 1 < all->GetNumberOfValues();)
-  {
-    const int rank = int(all->GetValue(at));
-    const vtkIdType count = vtkIdType(all->GetValue(at + 1));
-    at += 2;
-    for (vtkIdType r = 0; r < count; ++r, at += 1 + vtkIdType(N))
-    {
-      std::array<double, N> values;
-      for (std::size_t k = 0; k < N; ++k)
-        values[k] = all->GetValue(at + 1 + vtkIdType(k));
-      gathered.emplace_back(rank, std::int64_t(all->GetValue(at)), values);
-    }
-  }
-  return gathered;
-}
-} // namespace
-
 std::shared_ptr<const cbc3d::RankPasses> MakeRankPasses(
   vtkMultiProcessController* controller, const SlabPlan& plan, vtkImageData* image)
 {
@@ -193,23 +157,6 @@ std::shared_ptr<const cbc3d::RankPasses> MakeRankPasses(
   ranks->Axis = a;
   ranks->Lower = plan.Piece > 0 ? border(plan.Cuts[plan.Piece]) : -infinity;
   ranks->Upper = plan.Piece + 1 < plan.Pieces ? border(plan.Cuts[plan.Piece + 1]) : infinity;
-  ranks->SumByLabel = [controller](std::map<std::int32_t, std::array<double, 3>>& sums) {
-    vtkNew<vtkDoubleArray> mine, all;
-    for (const auto& [label, values] : sums)
-    {
-      mine->InsertNextValue(double(label));
-      for (const double value : values)
-        mine->InsertNextValue(value);
-    }
-    controller->AllGatherV(mine, all);
-    sums.clear();
-    for (vtkIdType r = 0; r + 3 < all->GetNumberOfValues(); r += 4)
-    {
-      auto& total = sums[std::int32_t(all->GetValue(r))];
-      for (int k = 0; k < 3; ++k)
-        total[k] += all->GetValue(r + 1 + k);
-    }
-  };
   ranks->SumAndMax = [controller](double& sum, double& largest) {
     double mine[2] = { sum, largest }, all[2];
     controller->AllReduce(mine, all, 1, vtkCommunicator::SUM_OP);
@@ -221,24 +168,6 @@ std::shared_ptr<const cbc3d::RankPasses> MakeRankPasses(
     int mine = yes ? 1 : 0, all = 0;
     controller->AllReduce(&mine, &all, 1, vtkCommunicator::MAX_OP);
     return all != 0;
-  };
-  ranks->SumByKey = [controller](std::map<std::int64_t, double>& sums) {
-    std::map<std::int64_t, std::array<double, 1>> rows;
-    for (const auto& [key, value] : sums)
-      rows[key] = { value };
-    sums.clear();
-    for (const auto& [rank, key, row] : GatherRows(controller, rows))
-      sums[key] += row[0];
-  };
-  ranks->BestByKey = [controller](std::map<std::int64_t, std::array<double, 4>>& best) {
-    const auto rows = GatherRows(controller, best);
-    best.clear();
-    for (const auto& [rank, key, row] : rows) // in rank order: the first of equals stays
-    {
-      const auto found = best.find(key);
-      if (found == best.end() || row[0] > found->second[0])
-        best[key] = row;
-    }
   };
   ranks->AllValues = [controller](const std::vector<double>& values) {
     vtkNew<vtkDoubleArray> mine, all;

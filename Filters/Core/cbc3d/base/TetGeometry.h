@@ -27,6 +27,12 @@ double LargestDihedralCosine(const Vec3& p0, const Vec3& p1, const Vec3& p2, con
 bool DihedralAnglesWithin(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3,
   double minimum);
 
+/// The centroid: the mean of the four corners.
+inline Vec3 Centroid(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3)
+{
+  return 0.25 * (p0 + p1 + p2 + p3);
+}
+
 /// The length of the longest of the six edges.
 double LongestEdge(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3);
 

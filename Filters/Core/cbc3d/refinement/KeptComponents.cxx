@@ -1,5 +1,6 @@
 #include "cbc3d/refinement/KeptComponents.h"
 
+#include "cbc3d/base/TetGeometry.h"
 #include "cbc3d/soundlabels/SoundLabels.h"
 
 #include <algorithm>
@@ -25,7 +26,7 @@ struct Holdings
 
 Eigen::Vector3d Centre(const std::vector<Eigen::Vector3d>& points, const Tet& tet)
 {
-  return 0.25 * (points[tet[0]] + points[tet[1]] + points[tet[2]] + points[tet[3]]);
+  return Centroid(points[tet[0]], points[tet[1]], points[tet[2]], points[tet[3]]);
 }
 
 Holdings FindHoldings(const LabelImage& image, const TissueComponents& components, int minimumVoxels,

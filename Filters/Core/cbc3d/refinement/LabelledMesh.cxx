@@ -1,6 +1,7 @@
 #include "cbc3d/refinement/LabelledMesh.h"
 
 #include "cbc3d/base/Parallel.h"
+#include "cbc3d/base/TetGeometry.h"
 
 #include <algorithm>
 
@@ -147,10 +148,9 @@ std::vector<char> RankOwnedTets(const LabelImage& image, const std::vector<Eigen
   std::vector<char> owned(tets.size(), 0);
   for (std::size_t t = 0; t < tets.size(); ++t)
   {
-    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    for (const PointId p : tets[t])
-      centre += points[p];
-    owned[t] = ranks.Owns(toAxis.dot(centre / 4.0 - image.Origin));
+    const Tet& tet = tets[t];
+    const Eigen::Vector3d centre = Centroid(points[tet[0]], points[tet[1]], points[tet[2]], points[tet[3]]);
+    owned[t] = ranks.Owns(toAxis.dot(centre - image.Origin));
   }
   return owned;
 }

@@ -4,10 +4,34 @@
 #include "cbc3d/refinement/KeptComponents.h"
 #include "cbc3d/refinement/SharedFarFaces.h"
 
+#include <algorithm>
+
 namespace cbc3d
 {
 namespace
 {
+// Every rank's rows (a key, then N values), in rank order.
+template <typename Key, std::size_t N>
+std::vector<std::pair<Key, std::array<double, N>>> GatherRows(
+  const RankPasses& ranks, const std::map<Key, std::array<double, N>>& rows)
+{
+  std::vector<double> mine;
+  mine.reserve((N + 1) * rows.size());
+  for (const auto& [key, values] : rows)
+  {
+    mine.push_back(double(key)); // labels and component numbers stay far below 2^53
+    mine.insert(mine.end(), values.begin(), values.end());
+  }
+  const std::vector<double> all = ranks.AllValues(mine);
+  std::vector<std::pair<Key, std::array<double, N>>> gathered(all.size() / (N + 1));
+  for (std::size_t r = 0; r < gathered.size(); ++r)
+  {
+    gathered[r].first = Key(all[(N + 1) * r]);
+    std::copy_n(all.begin() + (N + 1) * r + 1, N, gathered[r].second.begin());
+  }
+  return gathered;
+}
+
 // MeasureFidelity's calls: the slab's counts, then the components found in the mesh.
 void MeasureNothing(const RankPasses& ranks)
 {
@@ -26,6 +50,37 @@ void PinNothing(const RankPasses& ranks)
   ranks.SumByKey(holders);
 }
 } // namespace
+
+void RankPasses::SumByLabel(std::map<std::int32_t, std::array<double, 3>>& sums) const
+{
+  const auto rows = GatherRows(*this, sums);
+  sums.clear();
+  for (const auto& [label, values] : rows)
+    for (int k = 0; k < 3; ++k)
+      sums[label][k] += values[k];
+}
+
+void RankPasses::SumByKey(std::map<std::int64_t, double>& sums) const
+{
+  std::map<std::int64_t, std::array<double, 1>> rows;
+  for (const auto& [key, value] : sums)
+    rows[key] = { value };
+  sums.clear();
+  for (const auto& [key, values] : GatherRows(*this, rows))
+    sums[key] += values[0];
+}
+
+void RankPasses::BestByKey(std::map<std::int64_t, std::array<double, 4>>& best) const
+{
+  const auto rows = GatherRows(*this, best);
+  best.clear();
+  for (const auto& [key, row] : rows) // in rank order: the first of equals stays
+  {
+    const auto found = best.find(key);
+    if (found == best.end() || row[0] > found->second[0])
+      best[key] = row;
+  }
+}
 
 // The calls of RefineMesh (Refinement.cxx) and its parts, in their order.
 void RefineWithoutTissue(const RankPasses& ranks, bool refines, bool coverage, bool soundLabels)

@@ -24,17 +24,10 @@ struct RankPasses
   int Axis = 2;       // the image axis across the slabs
   double Lower = 0.0; // this rank's slab: mm along Axis from voxel 0 of the piece, [Lower, Upper)
   double Upper = 0.0;
-  /// Sums (voxels of the tissue, voxels in its tets, those of them that are its own) by label.
-  std::function<void(std::map<std::int32_t, std::array<double, 3>>&)> SumByLabel;
   /// The sum of `sum` and the largest `largest` over the ranks.
   std::function<void(double& sum, double& largest)> SumAndMax;
   /// Whether any rank says yes.
   std::function<bool(bool)> Any;
-  /// Sums the values of each key over the ranks (a key any rank gives is in the result).
-  std::function<void(std::map<std::int64_t, double>&)> SumByKey;
-  /// For each key, the entry of largest first value over the ranks (the lowest rank's of
-  /// equals): a candidate and where it is.
-  std::function<void(std::map<std::int64_t, std::array<double, 4>>&)> BestByKey;
   /// Every rank's values, in rank order.
   std::function<std::vector<double>(const std::vector<double>&)> AllValues;
   /// Joins the components of this rank's piece of `image` (a tissue's, or the background's) with
@@ -42,6 +35,14 @@ struct RankPasses
   /// WholeId its number, and `outside` (the background's, when given) whether any part of it
   /// reaches the outside.
   std::function<void(const LabelImage& image, RunComponents& components, std::vector<char>* outside)> JoinComponents;
+
+  /// Sums (voxels of the tissue, voxels in its tets, those of them that are its own) by label.
+  void SumByLabel(std::map<std::int32_t, std::array<double, 3>>& sums) const;
+  /// Sums the values of each key over the ranks (a key any rank gives is in the result).
+  void SumByKey(std::map<std::int64_t, double>& sums) const;
+  /// For each key, the entry of largest first value over the ranks (the lowest rank's of
+  /// equals): a candidate and where it is.
+  void BestByKey(std::map<std::int64_t, std::array<double, 4>>& best) const;
 
   bool Owns(double along) const { return along >= this->Lower && along < this->Upper; }
   /// Whether this rank's slab holds a voxel (a stored index).

@@ -1,6 +1,7 @@
 #include "cbc3d/soundlabels/ImageRegions.h"
 
 #include "cbc3d/base/Parallel.h"
+#include "cbc3d/base/TetGeometry.h"
 
 #include <algorithm>
 #include <array>
@@ -66,7 +67,7 @@ std::int32_t RegionOfVoxel(const LabelImage& image, const ImageRegions& regions,
 std::int32_t SampledRegion(const LabelImage& image, const ImageRegions& regions, const std::vector<Eigen::Vector3d>& points,
   const Tet& tet)
 {
-  const Eigen::Vector3d centroid = 0.25 * (points[tet[0]] + points[tet[1]] + points[tet[2]] + points[tet[3]]);
+  const Eigen::Vector3d centroid = Centroid(points[tet[0]], points[tet[1]], points[tet[2]], points[tet[3]]);
   std::array<std::int32_t, 5> found;
   for (int s = 0; s < 5; ++s)
   {
