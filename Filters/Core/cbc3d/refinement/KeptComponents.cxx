@@ -29,7 +29,7 @@ Eigen::Vector3d Centre(const std::vector<Eigen::Vector3d>& points, const Tet& te
   return Centroid(points[tet[0]], points[tet[1]], points[tet[2]], points[tet[3]]);
 }
 
-Holdings FindHoldings(const LabelImage& image, const TissueComponents& components, int minimumVoxels,
+Holdings FindHoldings(const TissueComponents& components, int minimumVoxels,
   const LabelledMesh& mesh, const std::vector<char>& componentInMesh, const std::vector<char>& counts)
 {
   const bool whole = !components.WholeId.empty();
@@ -123,7 +123,7 @@ std::map<std::int64_t, std::int32_t> PinComponents(const LabelImage& image,
   // rare.
   const RankPasses* ranks = params.Ranks.get();
   const std::vector<char> owned = ranks ? RankOwnedTets(image, points, mesh.Tets, *ranks) : std::vector<char>();
-  Holdings found = FindHoldings(image, components, params.MinimumComponentVoxels, mesh, componentInMesh, owned);
+  Holdings found = FindHoldings(components, params.MinimumComponentVoxels, mesh, componentInMesh, owned);
   if (ranks)
   {
     DecideAcrossRanks(components, *ranks, points, mesh, owned, found);
