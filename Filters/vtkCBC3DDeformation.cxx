@@ -5,6 +5,7 @@
 
 #include "cbc3d/deformation/Deformation.h"
 
+#include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
@@ -20,6 +21,39 @@
 #include <vtkUnstructuredGrid.h>
 
 vtkStandardNewMacro(vtkCBC3DDeformation);
+
+namespace
+{
+// The fixed points and volume offsets of a piece of a larger mesh, where the input has them.
+void ReadPieceArrays(vtkUnstructuredGrid* input, const cbc3d::LabelImage& image, cbc3d::DeformationParams& params)
+{
+  if (vtkDataArray* fixed = input->GetPointData()->GetArray(vtkCBC3DArrayNames::FixedPoints))
+  {
+    params.FixedPoints.resize(static_cast<std::size_t>(fixed->GetNumberOfTuples()));
+    for (vtkIdType p = 0; p < fixed->GetNumberOfTuples(); ++p)
+    {
+      params.FixedPoints[p] = fixed->GetComponent(p, 0) != 0.0;
+    }
+  }
+  vtkDataArray* window = input->GetFieldData()->GetArray(vtkCBC3DArrayNames::VoxelWindow);
+  if (window && window->GetNumberOfComponents() == 5 && window->GetNumberOfTuples() == 1)
+  {
+    params.VoxelWindow.Set = true;
+    params.VoxelWindow.Normal = Eigen::Vector3d(window->GetComponent(0, 0), window->GetComponent(0, 1), window->GetComponent(0, 2));
+    params.VoxelWindow.Lower = window->GetComponent(0, 3);
+    params.VoxelWindow.Upper = window->GetComponent(0, 4);
+  }
+  vtkDataArray* offsets = input->GetFieldData()->GetArray(vtkCBC3DArrayNames::VolumeOffsets);
+  for (vtkIdType t = 0; offsets && offsets->GetNumberOfComponents() == 2 && t < offsets->GetNumberOfTuples(); ++t)
+  {
+    std::int32_t code = 0;
+    if (image.Codes.FindCode(static_cast<vtkTypeInt64>(offsets->GetComponent(t, 0)), code))
+    {
+      params.VolumeOffsets[code] += offsets->GetComponent(t, 1);
+    }
+  }
+}
+} // namespace
 
 vtkCBC3DDeformation::vtkCBC3DDeformation()
   : vtkCBC3DAlgorithm(ImageInput::Port1)
@@ -95,6 +129,7 @@ int vtkCBC3DDeformation::RequestData(
     }
   }
   params.NumberOfThreads = this->NumberOfThreads;
+  ReadPieceArrays(input, *image, params);
   if (!this->ReadEdgeLimits(*image, params.MaximumEdge))
   {
     return 0;

@@ -19,6 +19,13 @@
  * would invert a tet or make a dihedral angle smaller than MinimumDihedralAngle (or larger than
  * 180 minus it) holds the offending vertices back. Topology and labels do not change.
  *
+ * A piece of a larger mesh (vtkCBC3DMesher over MPI ranks) may carry a point array `FixedPoints`
+ * (vtkUnsignedCharArray, 1 where another process moves the point: it keeps its place, and there
+ * is no rigid alignment) and a field array `VolumeOffsets` (2 components: tissue label, mm^3
+ * added to the tissue's voxel volume for its target) and `VoxelWindow` (5 components: a unit
+ * normal and the lower and upper bounds of n . x, mm: only the boundary voxels between are
+ * targets and guarded).
+ *
  * Output: the moved mesh; point data `Displacement` (vtkDoubleArray, 3 components, mm); field
  * data `DeformationIterations` (vtkIntArray), `DeformationStopReason` (vtkStringArray),
  * `DeformationSources`, `DeformationTargets` (vtkIdTypeArray).

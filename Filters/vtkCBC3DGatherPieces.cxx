@@ -132,6 +132,7 @@ void Gather(vtkMultiProcessController* controller, vtkUnstructuredGrid* piece,
     return;
   }
   vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble(); // the pieces' places, not rounded to single precision
   if (!PlacePoints(kept, points, error))
   {
     whole = nullptr;

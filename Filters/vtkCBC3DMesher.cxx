@@ -6,6 +6,7 @@
 #include "vtkCBC3DConvert.h"
 #include "vtkCBC3DMeshQuality.h"
 #include "vtkCBC3DPieces.h"
+#include "vtkCBC3DRankDeformation.h"
 #include "vtkCBC3DRefinement.h"
 #include "vtkCBC3DSeams.h"
 
@@ -24,6 +25,8 @@
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPointSet.h>
 #include <vtkSmartPointer.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkUnstructuredGrid.h>
@@ -85,6 +88,7 @@ struct vtkCBC3DMesher::Piece
   int WholeUpper[3] = { -1, -1, -1 };
   bool HasTissue = false;
   std::vector<std::int64_t> CutKeys;
+  double LatticeEdge = 0.0; // mm
   std::shared_ptr<const cbc3d::RankPasses> Passes;
 };
 
@@ -147,18 +151,6 @@ bool vtkCBC3DMesher::PreparePiece(vtkImageData* image, vtkInformation* inputInfo
     {
       vtkErrorMacro(<< "a tet budget (MaximumNumberOfTets) needs the whole mesh on one process; over MPI "
                     << "ranks give a lattice edge length instead");
-    }
-    return false;
-  }
-  if (this->Iterations > 0)
-  {
-    // Each rank deforming its piece alone moves the points on both sides of a border apart by
-    // up to millimetres (the elastic solve spans the whole mesh), which leaves flat tets at the
-    // borders: refuse rather than write them.
-    if (first)
-    {
-      vtkErrorMacro(<< "deformation across MPI ranks is not available yet: set Iterations (Deformation "
-                    << "Iterations) to 0 for the refined lattice, or mesh on one process");
     }
     return false;
   }
@@ -267,8 +259,8 @@ bool vtkCBC3DMesher::RunStages(vtkImageData* image, Piece* piece, vtkUnstructure
     stages.push_back({ deformation, "Deformation", 0.5 });
   }
   stages.push_back({ quality, "Quality", 0.1 });
-  // Over ranks, the lattice points get their global ids before deformation moves them, and the
-  // rank keeps its own tets before their quality is measured.
+  // Over ranks, the lattice points get their global ids and each rank keeps its own tets before
+  // deformation moves them (vtkCBC3DRankDeformation).
   const std::size_t namedStage = stages.size() - (this->Iterations > 0 ? 3 : 2);
 
   bool meshes = !piece || piece->HasTissue;
@@ -292,7 +284,12 @@ bool vtkCBC3DMesher::RunStages(vtkImageData* image, Piece* piece, vtkUnstructure
       filter->SetInputData(0, image);
     }
     std::string error;
-    if (meshes)
+    const bool acrossRanks = piece && filter == deformation.GetPointer();
+    if (acrossRanks)
+    {
+      error = this->DeformPiece(current, image, deformation, piece, shift / total, stages[s].Share / total);
+    }
+    else if (meshes)
     {
       error = this->RunStage(filter, stages[s].Name, shift / total, stages[s].Share / total);
     }
@@ -310,23 +307,23 @@ bool vtkCBC3DMesher::RunStages(vtkImageData* image, Piece* piece, vtkUnstructure
     {
       return false;
     }
-    if (meshes)
+    if (meshes && !acrossRanks)
     {
       current = vtkUnstructuredGrid::SafeDownCast(filter->GetOutputDataObject(0));
     }
-    if (piece && s == namedStage && !this->NamePiecePoints(image, lattice, current, piece))
+    if (piece && s == namedStage)
     {
-      return false;
-    }
-    if (piece && s + 2 == stages.size())
-    {
-      if (!this->KeepOwnTets(current, piece))
+      if (!this->NamePiecePoints(image, lattice, current, piece) || !this->KeepOwnTets(current, piece))
       {
         return false;
       }
       // A rank that owns no tet has nothing to measure: an empty piece, without the empty
       // arrays that ParaView's data movement cannot read back.
       meshes = meshes && current->GetNumberOfCells() > 0;
+    }
+    if (piece && s + 2 == stages.size())
+    {
+      current->GetPointData()->RemoveArray(vtkCBC3DPieces::LatticeKeyName);
     }
     shift += stages[s].Share;
   }
@@ -374,6 +371,7 @@ bool vtkCBC3DMesher::NamePiecePoints(vtkImageData* image, vtkAlgorithm* lattice,
   if (piece->HasTissue && edge)
   {
     const double h = edge->GetComponent(0, 0);
+    piece->LatticeEdge = h;
     const vtkCBC3DPieces::LatticeKeys keys(image, piece->WholeLower, h);
     const int axis = piece->Plan.Axis;
     piece->CutKeys.clear();
@@ -402,6 +400,31 @@ bool vtkCBC3DMesher::KeepOwnTets(vtkSmartPointer<vtkUnstructuredGrid>& mesh, Pie
   }
   mesh = owned;
   return true;
+}
+
+std::string vtkCBC3DMesher::DeformPiece(vtkUnstructuredGrid* mesh, vtkImageData* image,
+  vtkCBC3DDeformation* deformation, Piece* piece, double shift, double scale)
+{
+  vtkCBC3DRankDeformation::Layout layout;
+  layout.Axis = piece->Plan.Axis;
+  layout.Cuts = piece->Plan.Cuts;
+  layout.CutKeys = piece->CutKeys;
+  layout.Cube = piece->LatticeEdge;
+  auto run = [&](vtkUnstructuredGrid* part, vtkImageData* slices, vtkPoints* moved) {
+    deformation->SetInputData(0, part);
+    deformation->SetInputData(1, slices);
+    const std::string error = this->RunStage(deformation, "Deformation", shift, scale);
+    if (error.empty())
+    {
+      moved->SetDataTypeToDouble(); // (a deep copy keeps the receiver's type)
+      moved->DeepCopy(vtkPointSet::SafeDownCast(deformation->GetOutputDataObject(0))->GetPoints());
+    }
+    return error;
+  };
+  std::string error;
+  vtkDataArray* labels = vtkCBC3DConvert::ChooseLabelArray(this->GetInputArrayInformation(0), image);
+  vtkCBC3DRankDeformation::DeformAcrossRanks(piece->Controller, layout, image, labels, mesh, run, error);
+  return error;
 }
 
 double vtkCBC3DMesher::GetAutomaticBoundaryDistance() const

@@ -14,10 +14,10 @@
  * lattice cubes, meshes it on the lattice of the whole image (its refinement passes taking the
  * decisions of the whole image: cbc3d::RankPasses), and keeps the tets whose centres lie in its
  * slab; points on rank borders take their owner's position, and the ranks check that
- * their border faces match (vtkCBC3DSeams). The pieces carry `GlobalIds`, so writers merge them
- * (vtkCBC3DMeshWriter writes one file). Over ranks the mesher stops after refinement: a tet
- * budget (MaximumNumberOfTets) and deformation (Iterations > 0) are refused there, with one
- * error on the first rank.
+ * their border faces match (vtkCBC3DSeams). Deformation then runs on the ranks' own tets, each
+ * point moved by one rank that holds every tet around it (vtkCBC3DRankDeformation). The pieces
+ * carry `GlobalIds`, so writers merge them (vtkCBC3DMeshWriter writes one file). A tet budget
+ * (MaximumNumberOfTets) is refused over ranks, with one error on the first rank.
  *
  * @sa vtkCBC3DBCCLattice vtkCBC3DRefinement vtkCBC3DDeformation vtkCBC3DMeshQuality
  */
@@ -162,6 +162,8 @@ private:
   std::string RunStage(vtkAlgorithm* filter, const char* name, double shift, double scale);
   bool NamePiecePoints(vtkImageData* image, vtkAlgorithm* lattice, vtkUnstructuredGrid* mesh, Piece* piece);
   bool KeepOwnTets(vtkSmartPointer<vtkUnstructuredGrid>& mesh, Piece* piece);
+  std::string DeformPiece(vtkUnstructuredGrid* mesh, vtkImageData* image, class vtkCBC3DDeformation* deformation,
+    Piece* piece, double shift, double scale);
 
   vtkCBC3DMesher(const vtkCBC3DMesher&) = delete;
   void operator=(const vtkCBC3DMesher&) = delete;

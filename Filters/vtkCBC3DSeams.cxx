@@ -187,7 +187,6 @@ long long UnmatchedFaces(vtkMultiProcessController* controller, const std::vecto
 void CopyOwned(vtkUnstructuredGrid* mesh, const LocalSeams& seams, const std::vector<vtkIdType>& number, int me,
   vtkUnstructuredGrid* owned)
 {
-  mesh->GetPointData()->RemoveArray(vtkCBC3DPieces::LatticeKeyName);
   std::vector<vtkIdType> newId(mesh->GetNumberOfPoints(), -1);
   vtkNew<vtkPoints> points;
   if (mesh->GetPoints())

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <vector>
 
 namespace
 {
@@ -424,6 +425,49 @@ TEST(Deformation, KeepVolumesHoldsTheVoxelsVolumeWithoutLosingFidelity)
   for (const auto& tet : kept.Tets)
     ASSERT_TRUE(cbc3d::DihedralAnglesWithin(kept.Points[tet[0]], kept.Points[tet[1]], kept.Points[tet[2]],
       kept.Points[tet[3]], params.MinimumDihedralAngle / cbc3d::RadiansToDegrees * (1.0 - 1e-9)));
+}
+
+// A piece of a larger mesh: its fixed points keep their places to the bit while the rest move
+// within the angle bound, and a volume offset moves a tissue's target by that much.
+TEST(Deformation, FixedPointsKeepTheirPlacesAndVolumeOffsetsMoveTheTarget)
+{
+  const cbc3d::LabelImage image = BallImage(24, 6.0);
+  cbc3d::TetMesh refined, moved;
+  cbc3d::RefinementResult refinedResult;
+  ASSERT_TRUE(cbc3d::RefineMesh(image, Lattice(image, 8.0), cbc3d::RefinementParams(), refined, refinedResult).IsOk());
+  std::vector<double> xs;
+  for (const auto& p : refined.Points)
+    xs.push_back(p.x());
+  std::nth_element(xs.begin(), xs.begin() + xs.size() / 2, xs.end());
+  cbc3d::DeformationParams params;
+  for (const auto& p : refined.Points)
+    params.FixedPoints.push_back(p.x() < xs[xs.size() / 2] ? 1 : 0);
+  cbc3d::DeformationResult result;
+  ASSERT_TRUE(cbc3d::DeformMesh(image, refined, params, moved, result).IsOk());
+  std::size_t freeMoved = 0;
+  for (std::size_t p = 0; p < refined.Points.size(); ++p)
+  {
+    if (params.FixedPoints[p])
+      ASSERT_EQ(moved.Points[p], refined.Points[p]) << "fixed point " << p;
+    else
+      freeMoved += (moved.Points[p] - refined.Points[p]).norm() > 1e-3;
+  }
+  EXPECT_GT(freeMoved, 10u);
+  for (const auto& tet : moved.Tets)
+    ASSERT_TRUE(cbc3d::DihedralAnglesWithin(moved.Points[tet[0]], moved.Points[tet[1]], moved.Points[tet[2]],
+      moved.Points[tet[3]], params.MinimumDihedralAngle / cbc3d::RadiansToDegrees * (1.0 - 1e-9)));
+  // One flag per point, or none.
+  params.FixedPoints.pop_back();
+  EXPECT_FALSE(cbc3d::DeformMesh(image, refined, params, moved, result).IsOk());
+
+  double voxels = 0.0;
+  for (const auto label : image.Labels)
+    voxels += label == 1 ? image.Spacing.prod() : 0.0;
+  cbc3d::DeformationParams offset;
+  offset.VolumeOffsets[1] = -0.02 * voxels;
+  const double share = CentroidAndVolume(DeformedBall(image, offset)).second / voxels;
+  std::printf("ball volume / voxels with a -2%% offset: %.4f\n", share);
+  EXPECT_NEAR(share, 0.98, 0.005);
 }
 
 // The elastic solve's sparse products thread by Eigen's own count, all cores unless set: a

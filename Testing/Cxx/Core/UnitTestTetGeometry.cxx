@@ -104,3 +104,33 @@ TEST(TetGeometry, AnglesWithinAgreesWithTheAngles)
     }
   }
 }
+
+// The share of a tet beyond a plane: a corner cut at half its edges is an eighth, a plane
+// through the midpoints of four edges halves a tet, the two sides sum to one, and a fine
+// quadrature over the tet agrees.
+TEST(TetGeometry, ShareAboveAPlaneHasItsKnownValues)
+{
+  EXPECT_NEAR(cbc3d::ShareAbove({ 1, -1, -1, -1 }), 0.125, 1e-15);
+  EXPECT_NEAR(cbc3d::ShareAbove({ -1, 1, 1, 1 }), 0.875, 1e-15);
+  EXPECT_NEAR(cbc3d::ShareAbove({ 1, 1, -1, -1 }), 0.5, 1e-15);
+  EXPECT_EQ(cbc3d::ShareAbove({ -1, -2, -3, 0 }), 0.0);
+  EXPECT_EQ(cbc3d::ShareAbove({ 1, 2, 3, 4 }), 1.0);
+  for (const std::array<double, 4>& d : { std::array<double, 4>{ 1, 2, -1, -3 }, std::array<double, 4>{ 0.5, -2, 3, -1 },
+         std::array<double, 4>{ 4, -1, -0.5, -2 }, std::array<double, 4>{ -0.3, 2, 1, 0.7 } })
+  {
+    const std::array<double, 4> flipped = { -d[0], -d[1], -d[2], -d[3] };
+    EXPECT_NEAR(cbc3d::ShareAbove(d) + cbc3d::ShareAbove(flipped), 1.0, 1e-12);
+    // Midpoint quadrature on n^3 sub-cells of the barycentric simplex.
+    const int n = 120;
+    double above = 0.0, all = 0.0;
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; i + j < n; ++j)
+        for (int k = 0; i + j + k < n; ++k)
+        {
+          const double a = (i + 0.25) / n, b = (j + 0.25) / n, c = (k + 0.25) / n, w = 1.0 - a - b - c;
+          above += (w * d[0] + a * d[1] + b * d[2] + c * d[3]) > 0.0;
+          all += 1.0;
+        }
+    EXPECT_NEAR(cbc3d::ShareAbove(d), above / all, 0.01) << d[0] << " " << d[1] << " " << d[2] << " " << d[3];
+  }
+}

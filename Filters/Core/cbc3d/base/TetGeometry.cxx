@@ -74,4 +74,40 @@ double LongestEdge(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p
   return std::sqrt(std::max({ (p1 - p0).squaredNorm(), (p2 - p0).squaredNorm(), (p3 - p0).squaredNorm(),
     (p2 - p1).squaredNorm(), (p3 - p1).squaredNorm(), (p3 - p2).squaredNorm() }));
 }
+
+double ShareAbove(const std::array<double, 4>& values)
+{
+  std::array<int, 4> above{}, below{};
+  int aboveCount = 0, belowCount = 0;
+  for (int c = 0; c < 4; ++c)
+  {
+    if (values[c] > 0.0)
+      above[aboveCount++] = c;
+    else
+      below[belowCount++] = c;
+  }
+  if (aboveCount == 0 || belowCount == 0)
+    return aboveCount == 0 ? 0.0 : 1.0;
+  // One corner alone on its side: a corner tet, scaled along its three edges.
+  auto corner = [&](int alone, const std::array<int, 4>& others, int count) {
+    double share = 1.0;
+    for (int o = 0; o < count; ++o)
+      share *= values[alone] / (values[alone] - values[others[o]]);
+    return share;
+  };
+  if (aboveCount == 1)
+    return corner(above[0], below, 3);
+  if (belowCount == 1)
+    return 1.0 - corner(below[0], above, 3);
+  // Two and two: a prism between the two corners above and the plane, in the unit tet (the
+  // share is the same in any tet), as three tets.
+  const std::array<Vec3, 4> unit = { Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1) };
+  auto cut = [&](int i, int j) -> Vec3 { return unit[i] + values[i] / (values[i] - values[j]) * (unit[j] - unit[i]); };
+  const Vec3 A = unit[above[0]], B = unit[above[1]];
+  const Vec3 P = cut(above[0], below[0]), Q = cut(above[0], below[1]), R = cut(above[1], below[0]),
+             S = cut(above[1], below[1]);
+  const double volume = std::abs(SignedVolume(A, P, Q, B)) + std::abs(SignedVolume(P, Q, B, R)) +
+    std::abs(SignedVolume(Q, B, R, S));
+  return 6.0 * volume; // the unit tet's volume is 1/6
+}
 } // namespace cbc3d

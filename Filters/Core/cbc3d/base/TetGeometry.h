@@ -36,6 +36,11 @@ inline Vec3 Centroid(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3&
 /// The length of the longest of the six edges.
 double LongestEdge(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3);
 
+/// The share of a tet's volume where a linear function is positive, from its values at the
+/// four corners (it depends on nothing else): the part of a tet beyond a plane, with the
+/// corners' signed distances to it.
+double ShareAbove(const std::array<double, 4>& values);
+
 constexpr double RadiansToDegrees = 57.295779513082320876798154814105;
 } // namespace cbc3d
 

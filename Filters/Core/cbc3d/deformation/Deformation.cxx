@@ -103,6 +103,10 @@ public:
     {
       this->Interior[p] = 0;
     }
+    for (std::size_t p = 0; p < params.FixedPoints.size(); ++p)
+    {
+      this->Interior[p] = this->Interior[p] && !params.FixedPoints[p];
+    }
   }
 
   /// One iteration from the points at x (moved in place when a step is made): the sources'
@@ -114,7 +118,8 @@ public:
     std::vector<Eigen::Vector3d> goals;
     std::vector<char> matched;
     this->Match.Match(x, goals, matched);
-    if (this->Params.RigidAlignment && !this->AlignRigidly(x, goals, matched, stops, done))
+    if (this->Params.RigidAlignment && this->Params.FixedPoints.empty() &&
+      !this->AlignRigidly(x, goals, matched, stops, done))
     {
       return StepOutcome::Aborted;
     }
@@ -129,7 +134,8 @@ public:
     std::vector<Eigen::Vector3d> trial;
     std::vector<double> share;
     const StepOutcome outcome = GuardedStep(this->Mesh, x,
-      [&](std::size_t p) { return this->Elastic.Displacement(p); }, this->Bounds,
+      [&](std::size_t p) { return this->IsFixed(p) ? Eigen::Vector3d::Zero() : this->Elastic.Displacement(p); },
+      this->Bounds,
       this->Params.NumberOfThreads, this->Fidelity, stops.KeepGoing, trial, share);
     if (outcome == StepOutcome::Aborted || stops.Stopped())
     {
@@ -146,6 +152,8 @@ public:
   }
 
 private:
+  bool IsFixed(std::size_t p) const { return !this->Params.FixedPoints.empty() && this->Params.FixedPoints[p]; }
+
   // The rigid part of the match first (rotation and translation, Umeyama's least squares): it
   // moves the mesh without straining a tet, where the elastic step alone would have its
   // strained tets held back by the quality guard. Matching again after each move and fitting
@@ -236,7 +244,7 @@ private:
       {
         springs[3 * p + c] = this->Params.Penalty * this->Elastic.DiagonalStiffness(3 * p + c);
       }
-      if (!matched[s])
+      if (!matched[s] || this->IsFixed(p))
       {
         continue; // held in place by its spring, rather than drift with its neighbours
       }
@@ -253,6 +261,15 @@ private:
       for (int c = 0; c < 3; ++c)
       {
         rhs[3 * p + c] = springs[3 * p + c] * d[c];
+      }
+    }
+    // A fixed point is tied by a spring so stiff that its neighbours solve as if it were
+    // clamped (its own step is then dropped).
+    for (std::size_t p = 0; p < this->Params.FixedPoints.size(); ++p)
+    {
+      for (int c = 0; this->Params.FixedPoints[p] && c < 3; ++c)
+      {
+        springs[3 * p + c] = 1e6 * this->Elastic.DiagonalStiffness(Eigen::Index(3 * p + c));
       }
     }
     return moved;
@@ -302,6 +319,28 @@ double NegligibleRigidMove(const SurfaceSources& sources)
   return 0.01 * smallestElement;
 }
 
+// The boundary voxels inside the window, where one is set.
+TissueVoxels WithinWindow(const LabelImage& image, TissueVoxels boundary, const DeformationParams::Window& window)
+{
+  if (!window.Set)
+  {
+    return boundary;
+  }
+  TissueVoxels inside;
+  for (const auto& [tissue, voxels] : boundary)
+  {
+    for (const std::int64_t voxel : voxels)
+    {
+      const double along = window.Normal.dot(image.VoxelCentre(voxel));
+      if (along >= window.Lower && along <= window.Upper)
+      {
+        inside[tissue].push_back(voxel);
+      }
+    }
+  }
+  return inside;
+}
+
 // The image, the mesh and the parameters' ranges, or an error naming what is wrong.
 Status ValidateInputs(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params)
 {
@@ -314,6 +353,10 @@ Status ValidateInputs(const LabelImage& image, const TetMesh& mesh, const Deform
   if (!validMesh.IsOk())
   {
     return Status::Error("the mesh to deform is not valid: " + validMesh.GetMessage());
+  }
+  if (!params.FixedPoints.empty() && params.FixedPoints.size() != mesh.Points.size())
+  {
+    return Status::Error("deformation needs one fixed-point flag per point, or none");
   }
   if (params.Iterations < 0 || !(params.Penalty > 0.0) ||
     !(params.MinimumDihedralAngle >= 0.0 && params.MinimumDihedralAngle < 60.0))
@@ -403,7 +446,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     return Status::Aborted();
   }
   // The tissues' boundary voxels, found once for the targets and the fidelity guard.
-  const TissueVoxels boundary = TissueBoundaryVoxels(image, threads);
+  const TissueVoxels boundary = WithinWindow(image, TissueBoundaryVoxels(image, threads), params.VoxelWindow);
   const std::vector<BoundaryTarget> targets = FindBoundaryTargets(image, boundary, params.Pattern, params.Placement);
   if (stops.Stopped(0.04))
   {
@@ -419,7 +462,8 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   const Matcher matcher(sources, targets, threads);
   // Boundary voxels are dense: a grid of about a voxel per cell keeps each query short
   // (measured on the brain: 3% fewer instructions in all than cells of two voxels).
-  FidelityGuard fidelity(image, boundary, mesh, faces, image.Spacing.maxCoeff(), threads, stops.KeepGoing);
+  FidelityGuard fidelity(
+    image, boundary, mesh, faces, image.Spacing.maxCoeff(), threads, stops.KeepGoing, params.FixedPoints);
   if (stops.Stopped(0.07))
   {
     return Status::Aborted();
@@ -439,8 +483,25 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   if (params.KeepVolumes && result.Iterations > 0)
   {
     // Half a voxel per round at most: the shortfalls left are well under a voxel deep.
-    const TissueVolumeKeeper volumes(mesh, faces, TissueImageVolumes(image, threads), 0.5 * image.Spacing.minCoeff());
-    if (RestoreTissueVolumes(volumes, mesh, sources.Points, x, bounds, threads, fidelity, stops.KeepGoing) ==
+    std::map<std::int32_t, double> targets = TissueImageVolumes(image, threads);
+    for (const auto& [tissue, offset] : params.VolumeOffsets)
+    {
+      const auto target = targets.find(tissue); // (background labels have none)
+      if (target != targets.end())
+      {
+        target->second += offset;
+      }
+    }
+    const TissueVolumeKeeper volumes(mesh, faces, std::move(targets), 0.5 * image.Spacing.minCoeff());
+    std::vector<PointId> moving;
+    for (const PointId p : sources.Points)
+    {
+      if (params.FixedPoints.empty() || !params.FixedPoints[p])
+      {
+        moving.push_back(p);
+      }
+    }
+    if (RestoreTissueVolumes(volumes, mesh, moving, x, bounds, threads, fidelity, stops.KeepGoing) ==
       StepOutcome::Aborted)
     {
       return Status::Aborted();

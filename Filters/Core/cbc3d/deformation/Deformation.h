@@ -56,6 +56,22 @@ struct DeformationParams
   Material DefaultMaterial;
   /// OpenMP threads; 0 = all cores.
   int NumberOfThreads = 0;
+  /// Points that keep their place (one flag per point; empty: none), where another process
+  /// moves them: the mesh is one piece of a larger one. With any fixed point there is no rigid
+  /// alignment, which would move them too.
+  std::vector<char> FixedPoints;
+  /// Added to a tissue's voxel volume for its target (mm^3, by tissue code): a piece's tets
+  /// cover a little more or less than its voxels near the cuts.
+  std::map<std::int32_t, double> VolumeOffsets;
+  /// Where set, only the boundary voxels whose centres c have Lower <= Normal . c <= Upper are
+  /// targets and guarded: a piece answers for its own slab, not for the false boundary where
+  /// its image ends.
+  struct Window
+  {
+    bool Set = false;
+    Eigen::Vector3d Normal = Eigen::Vector3d::UnitZ();
+    double Lower = 0.0, Upper = 0.0;
+  } VoxelWindow;
 };
 
 struct DeformationResult

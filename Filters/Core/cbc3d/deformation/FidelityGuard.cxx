@@ -29,7 +29,8 @@ double MeanSurfaceEdge(const TetMesh& mesh, const std::vector<MeshFace>& faces)
 } // namespace
 
 FidelityGuard::FidelityGuard(const LabelImage& image, const TissueVoxels& boundary, const TetMesh& mesh,
-  const std::vector<MeshFace>& faces, double cell, int threads, const std::function<bool()>& keepGoing)
+  const std::vector<MeshFace>& faces, double cell, int threads, const std::function<bool()>& keepGoing,
+  const std::vector<char>& fixed)
   : Cell(cell)
   , VertexCell(std::max(cell, MeanSurfaceEdge(mesh, faces)))
   , Threads(threads)
@@ -45,6 +46,10 @@ FidelityGuard::FidelityGuard(const LabelImage& image, const TissueVoxels& bounda
     if (found != boundary.end())
     {
       Tissue tissue{ label, ids };
+      for (std::size_t v = 0; !fixed.empty() && v < ids.size(); ++v)
+      {
+        tissue.Counted.push_back(fixed[ids[v]] ? 0 : 1);
+      }
       for (const std::int64_t voxel : found->second)
       {
         tissue.Voxels.push_back(image.VoxelCentre(voxel));
@@ -202,17 +207,22 @@ void FidelityGuard::Steer(const std::vector<double>& reach, const std::vector<do
 
 double FidelityGuard::Measure(const Tissue& tissue, Snapshot& at) const
 {
-  // The farthest of `from` from `to`, keeping each one's nearest; a max reduction is exact:
-  // the same for any thread count.
+  // The farthest of `from` from `to`, keeping each one's nearest, over the pairs whose vertex
+  // counts; a max reduction is exact: the same for any thread count.
+  auto counted = [&](int vertex) { return tissue.Counted.empty() || tissue.Counted[vertex]; };
   auto farthest = [this](const std::vector<Eigen::Vector3d>& from, const PointGrid& to,
-                    const std::vector<Eigen::Vector3d>& toPoints, std::vector<int>& nearest) {
+                    const std::vector<Eigen::Vector3d>& toPoints, std::vector<int>& nearest,
+                    const std::function<bool(std::size_t, int)>& counts) {
     nearest = to.NearestAnyOfAll(from, this->Threads);
     double worst = 0.0;
     for (std::size_t i = 0; i < from.size(); ++i)
-      worst = std::max(worst, nearest[i] < 0 ? 0.0 : (toPoints[nearest[i]] - from[i]).norm());
+      if (nearest[i] >= 0 && counts(i, nearest[i]))
+        worst = std::max(worst, (toPoints[nearest[i]] - from[i]).norm());
     return worst;
   };
-  return std::max(farthest(at.Points, *tissue.Grid, tissue.Voxels, at.NearestVoxel),
-    farthest(tissue.Voxels, *at.Grid, at.Points, at.NearestVertex));
+  return std::max(farthest(at.Points, *tissue.Grid, tissue.Voxels, at.NearestVoxel,
+                    [&](std::size_t vertex, int) { return counted(int(vertex)); }),
+    farthest(tissue.Voxels, *at.Grid, at.Points, at.NearestVertex,
+      [&](std::size_t, int vertex) { return counted(vertex); }));
 }
 } // namespace cbc3d

@@ -26,8 +26,12 @@ public:
   /// guard is left unfinished.
   /// `faces` are the mesh's (FindMeshFaces, or SurfaceFaces: faces inside a tissue are ignored).
   /// `boundary` are the image's TissueBoundaryVoxels; `cell` the cell size of the grids over them.
+  /// With `fixed` (one flag per point; empty: none), the distance counts only the vertices that
+  /// may move and the voxels nearest to them: a piece of a larger mesh answers for its own
+  /// part, not for the vertices held at its edges, whose nearest voxels may lie beyond its image.
   FidelityGuard(const LabelImage& image, const TissueVoxels& boundary, const TetMesh& mesh,
-    const std::vector<MeshFace>& faces, double cell, int threads, const std::function<bool()>& keepGoing);
+    const std::vector<MeshFace>& faces, double cell, int threads, const std::function<bool()>& keepGoing,
+    const std::vector<char>& fixed = {});
 
   /// Holds back (share 0) the vertices whose step from the accepted positions to `trial` would
   /// push a tissue's Hausdorff distance past its current value: vertices that would end farther
@@ -83,6 +87,7 @@ private:
   {
     std::int32_t Label;
     std::vector<PointId> Vertices;
+    std::vector<char> Counted;           // per vertex: whether the distance counts it (empty: all)
     std::vector<Eigen::Vector3d> Voxels; // boundary voxel centres, which the distance measures to
     double Hausdorff = 0.0;
     std::unique_ptr<PointGrid> Grid;        // over Voxels
