@@ -1,8 +1,8 @@
 """Peak memory of every rank, meshing over MPI ranks: `mpiexec -n N pvbatch` with the one-shot
-filter (Testing/Python/mpi_mesh.py, without deformation), each rank's pvbatch under
-`/usr/bin/time`, against the same run on one process.
+filter (Testing/Python/mpi_mesh.py, without deformation, or with it after --deformed), each
+rank's pvbatch under `/usr/bin/time`, against the same run on one process.
 
-    python3 Testing/Benchmark/rank_memory.py PLUGIN IMAGE [RANKS[:HALO] ...]
+    python3 Testing/Benchmark/rank_memory.py [--deformed] PLUGIN IMAGE [RANKS[:HALO] ...]
 
 RANKS:HALO gives the halo in lattice cubes (Rank Halo; 4 when left out), e.g. `2 3 3:2`. Prints
 one line a run: ranks, halo, seconds, tets, each rank's peak (GB), and the largest as a share
@@ -23,14 +23,16 @@ def environment():
     return {k: v for k, v in os.environ.items() if not k.startswith(("OMPI_", "PMIX_", "ORTE_"))}
 
 
-def run(plugin, image, ranks, halo, work):
+def run(plugin, image, ranks, halo, work, deformed):
     """Seconds, tets and each rank's peak resident GB of one run."""
     timing = os.path.join(work, "rank-%q.txt")
     for name in os.listdir(work):
         os.remove(os.path.join(work, name))
     command = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks), "bash", "-c",
                '/usr/bin/time -o "%s" -f "%%e %%M" "$@"' % timing.replace("%q", "$OMPI_COMM_WORLD_RANK"),
-               "time", "pvbatch", DRIVER, plugin, image, "DeformationIterations=0", "RankHalo=%s" % float(halo)]
+               "time", "pvbatch", DRIVER, plugin, image, "RankHalo=%s" % float(halo)]
+    if not deformed:
+        command.append("DeformationIterations=0")
     result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=environment())
     tets = re.search(r"mpi_mesh: \d+ ranks, (\d+) tets", result.stdout)
     if result.returncode != 0 or not tets:
@@ -45,6 +47,8 @@ def run(plugin, image, ranks, halo, work):
 
 
 def main(argv):
+    deformed = "--deformed" in argv
+    argv = [a for a in argv if a != "--deformed"]
     if len(argv) < 3:
         print(__doc__)
         return 2
@@ -54,7 +58,7 @@ def main(argv):
     serial = None
     with tempfile.TemporaryDirectory() as work:
         for ranks, halo in runs:
-            seconds, tets, peaks = run(plugin, image, ranks, halo, work)
+            seconds, tets, peaks = run(plugin, image, ranks, halo, work, deformed)
             serial = serial or max(peaks)
             print("%-6d %-5s %9.1f %10d  %-24s %3.0f%%" % (
                 ranks, "-" if ranks == 1 else halo, seconds, tets, ", ".join("%.2f" % p for p in peaks),

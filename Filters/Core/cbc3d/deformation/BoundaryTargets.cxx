@@ -142,4 +142,25 @@ std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, const T
   }
   return targets;
 }
+
+TissueVoxels WithinWindow(const LabelImage& image, TissueVoxels boundary, const BoundaryWindow& window)
+{
+  if (!window.Set)
+  {
+    return boundary;
+  }
+  TissueVoxels inside;
+  for (const auto& [tissue, voxels] : boundary)
+  {
+    for (const std::int64_t voxel : voxels)
+    {
+      const double along = window.Normal.dot(image.VoxelCentre(voxel));
+      if (along >= window.Lower && along <= window.Upper)
+      {
+        inside[tissue].push_back(voxel);
+      }
+    }
+  }
+  return inside;
+}
 } // namespace cbc3d

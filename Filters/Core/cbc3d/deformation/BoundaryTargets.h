@@ -56,6 +56,17 @@ Eigen::Vector3d TargetPosition(const LabelImage& image, std::int64_t voxel, Targ
 /// in x-fastest order; a target whose label-set an earlier tissue already produced is skipped,
 /// so each interface is sampled from one side. After a voxel is taken, its neighbours under the
 /// pattern are not taken. Each sits at TargetPosition.
+/// A slab of boundary voxels: those whose centres c have Lower <= Normal . c <= Upper.
+struct BoundaryWindow
+{
+  bool Set = false;
+  Eigen::Vector3d Normal = Eigen::Vector3d::UnitZ();
+  double Lower = 0.0, Upper = 0.0;
+};
+
+/// The boundary voxels inside the window (all of them where it is not set).
+TissueVoxels WithinWindow(const LabelImage& image, TissueVoxels boundary, const BoundaryWindow& window);
+
 std::vector<BoundaryTarget> FindBoundaryTargets(const LabelImage& image, TargetPattern pattern,
   TargetPlacement placement = TargetPlacement::VoxelCentre);
 

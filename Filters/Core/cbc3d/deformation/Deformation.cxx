@@ -56,22 +56,6 @@ private:
   double Reached = 0.0;
 };
 
-// The smallest margin of any dihedral angle from 0 or 180 degrees (radians); a minimum, so
-// the same for any thread count.
-double SmallestAngleMargin(const TetMesh& mesh, int threads)
-{
-  const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
-  double smallest = M_PI;
-#pragma omp parallel for schedule(static) reduction(min : smallest) num_threads(ThreadCount(threads))
-  for (std::int64_t t = 0; t < count; ++t)
-  {
-    const Tet& tet = mesh.Tets[t];
-    for (const double a : DihedralAngles(mesh.Points[tet[0]], mesh.Points[tet[1]], mesh.Points[tet[2]], mesh.Points[tet[3]]))
-      smallest = std::min({ smallest, a, M_PI - a });
-  }
-  return smallest;
-}
-
 // The paper's registration iterations over a set-up mesh: matching, a rigid fit, steering the
 // farthest vertices, an elastic step with the goals as penalty springs, guarded.
 class Registration
@@ -317,28 +301,6 @@ double NegligibleRigidMove(const SurfaceSources& sources)
     smallestElement = std::min(smallestElement, sources.LocalSize[p]);
   }
   return 0.01 * smallestElement;
-}
-
-// The boundary voxels inside the window, where one is set.
-TissueVoxels WithinWindow(const LabelImage& image, TissueVoxels boundary, const DeformationParams::Window& window)
-{
-  if (!window.Set)
-  {
-    return boundary;
-  }
-  TissueVoxels inside;
-  for (const auto& [tissue, voxels] : boundary)
-  {
-    for (const std::int64_t voxel : voxels)
-    {
-      const double along = window.Normal.dot(image.VoxelCentre(voxel));
-      if (along >= window.Lower && along <= window.Upper)
-      {
-        inside[tissue].push_back(voxel);
-      }
-    }
-  }
-  return inside;
 }
 
 // The image, the mesh and the parameters' ranges, or an error naming what is wrong.

@@ -63,15 +63,9 @@ struct DeformationParams
   /// Added to a tissue's voxel volume for its target (mm^3, by tissue code): a piece's tets
   /// cover a little more or less than its voxels near the cuts.
   std::map<std::int32_t, double> VolumeOffsets;
-  /// Where set, only the boundary voxels whose centres c have Lower <= Normal . c <= Upper are
-  /// targets and guarded: a piece answers for its own slab, not for the false boundary where
-  /// its image ends.
-  struct Window
-  {
-    bool Set = false;
-    Eigen::Vector3d Normal = Eigen::Vector3d::UnitZ();
-    double Lower = 0.0, Upper = 0.0;
-  } VoxelWindow;
+  /// Where set, the boundary voxels this run answers for (targets and guards): a piece answers
+  /// for its own slab, not for the false boundary where its image ends.
+  BoundaryWindow VoxelWindow;
 };
 
 struct DeformationResult

@@ -10,6 +10,20 @@
 
 namespace cbc3d
 {
+double SmallestAngleMargin(const TetMesh& mesh, int threads)
+{
+  const std::int64_t count = static_cast<std::int64_t>(mesh.Tets.size());
+  double smallest = M_PI;
+#pragma omp parallel for schedule(static) reduction(min : smallest) num_threads(ThreadCount(threads))
+  for (std::int64_t t = 0; t < count; ++t)
+  {
+    const Tet& tet = mesh.Tets[t];
+    for (const double a : DihedralAngles(mesh.Points[tet[0]], mesh.Points[tet[1]], mesh.Points[tet[2]], mesh.Points[tet[3]]))
+      smallest = std::min({ smallest, a, M_PI - a });
+  }
+  return smallest;
+}
+
 StepBounds MakeStepBounds(const TetMesh& mesh, double minimumRadians, const EdgeLengthLimits& limits)
 {
   StepBounds bounds;

@@ -22,6 +22,10 @@ struct StepBounds
   std::vector<double> EdgeLimits;
 };
 
+/// The smallest margin of any dihedral angle of the mesh from 0 or 180 degrees (radians); a
+/// minimum, so the same for any thread count.
+double SmallestAngleMargin(const TetMesh& mesh, int threads);
+
 /// The bounds of a mesh's steps: the angle bound, and with any edge limit, each tissue tet's
 /// limit or its longest edge at the start, whichever is longer (the starting mesh must satisfy
 /// the bounds, or no step could ever be checked against them).
