@@ -320,6 +320,12 @@ bool vtkCBC3DMesher::RunStages(vtkImageData* image, Piece* piece, vtkUnstructure
       // A rank that owns no tet has nothing to measure: an empty piece, without the empty
       // arrays that ParaView's data movement cannot read back.
       meshes = meshes && current->GetNumberOfCells() > 0;
+      // The piece's lattice and refined mesh, halo and all, are done with: free them before
+      // deformation builds its own structures.
+      for (std::size_t done = 0; done <= s; ++done)
+      {
+        stages[done].Filter->GetOutputDataObject(0)->Initialize();
+      }
     }
     if (piece && s + 2 == stages.size())
     {
@@ -414,11 +420,13 @@ std::string vtkCBC3DMesher::DeformPiece(vtkUnstructuredGrid* mesh, vtkImageData*
     deformation->SetInputData(0, part);
     deformation->SetInputData(1, slices);
     const std::string error = this->RunStage(deformation, "Deformation", shift, scale);
-    if (error.empty())
+    vtkPointSet* output = vtkPointSet::SafeDownCast(deformation->GetOutputDataObject(0));
+    if (!error.empty() || !output || output->GetNumberOfPoints() != part->GetNumberOfPoints())
     {
-      moved->SetDataTypeToDouble(); // (a deep copy keeps the receiver's type)
-      moved->DeepCopy(vtkPointSet::SafeDownCast(deformation->GetOutputDataObject(0))->GetPoints());
+      return error.empty() ? std::string("the deformation was stopped") : error;
     }
+    moved->SetDataTypeToDouble(); // (a deep copy keeps the receiver's type)
+    moved->DeepCopy(output->GetPoints());
     return error;
   };
   std::string error;

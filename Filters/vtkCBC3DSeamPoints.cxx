@@ -43,10 +43,10 @@ std::vector<std::int64_t> AxisKeys(vtkUnstructuredGrid* mesh, int axis)
     along[p] = vtkCBC3DPieces::UnpackKey(keys->GetValue(p))[axis];
   return along;
 }
+
 Seams FindSeams(vtkMultiProcessController* controller, vtkUnstructuredGrid* mesh, int axis,
   const std::vector<std::int64_t>& cutKeys, std::int64_t cubeKeys)
 {
-  const int me = controller->GetLocalProcessId();
   vtkDataArray* ids = mesh->GetPointData()->GetArray(vtkCBC3DArrayNames::GlobalIds);
   const std::vector<std::int64_t> along = AxisKeys(mesh, axis);
   vtkNew<vtkTypeInt64Array> send, all;
@@ -57,21 +57,16 @@ Seams FindSeams(vtkMultiProcessController* controller, vtkUnstructuredGrid* mesh
     if (nearCut)
     {
       send->InsertNextValue(static_cast<vtkTypeInt64>(ids->GetComponent(p, 0)));
-      send->InsertNextValue(me);
     }
   }
   controller->AllGatherV(send, all);
-  std::unordered_map<vtkIdType, std::pair<int, int>> holders; // lowest rank, ranks
-  for (vtkIdType r = 0; r + 1 < all->GetNumberOfValues(); r += 2)
-  {
-    auto& [lowest, count] = holders.try_emplace(vtkIdType(all->GetValue(r)), int(all->GetValue(r + 1)), 0).first->second;
-    lowest = std::min(lowest, int(all->GetValue(r + 1)));
-    ++count;
-  }
+  std::unordered_map<vtkIdType, int> holders; // ranks that name each point
+  for (vtkIdType r = 0; r < all->GetNumberOfValues(); ++r)
+    ++holders[vtkIdType(all->GetValue(r))];
   Seams seams;
-  for (const auto& [id, holder] : holders)
-    if (holder.second > 1)
-      seams.Mover.emplace(id, holder.first);
+  for (const auto& [id, count] : holders)
+    if (count > 1)
+      seams.Points.insert(id);
   return seams;
 }
 

@@ -5,7 +5,7 @@
  *
  * A tet belongs to the rank whose slab holds its centre, so a point that tets of two ranks use
  * lies within a lattice cube of a cut. Each rank names its points that near a cut; a point two
- * ranks name is a seam point, and the lowest of them moves it.
+ * ranks name is a seam point.
  */
 #ifndef vtkCBC3DSeamPoints_h
 #define vtkCBC3DSeamPoints_h
@@ -15,7 +15,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
-#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 class vtkMultiProcessController;
@@ -23,18 +23,12 @@ class vtkUnstructuredGrid;
 
 namespace vtkCBC3DSeamPoints
 {
-/// The seam points of every rank's piece, by global id: the lowest rank holding each.
+/// The seam points of every rank's piece, by global id.
 struct Seams
 {
-  std::unordered_map<vtkIdType, int> Mover;
+  std::unordered_set<vtkIdType> Points;
 
-  bool IsSeam(vtkIdType id) const { return this->Mover.count(id) != 0; }
-  /// The rank that moves a seam point; -1 for any other point.
-  int MoverOf(vtkIdType id) const
-  {
-    const auto found = this->Mover.find(id);
-    return found == this->Mover.end() ? -1 : found->second;
-  }
+  bool IsSeam(vtkIdType id) const { return this->Points.count(id) != 0; }
 };
 
 /// The seams of the ranks' owned pieces (`mesh` with GlobalIds and LatticeKey points). `cutKeys`
