@@ -202,7 +202,8 @@ std::vector<vtkIdType> BandMovers(const Phases& phases, const RunMesh& mesh)
 // rest held; then every rank takes the places of its points moved. False on every rank where a
 // rank's run failed (its error in `error`).
 bool DeformBands(vtkMultiProcessController* controller, const Phases& phases, const BandTets& all, std::string& error)
-{  vtkNew<vtkTypeInt64Array> sendIds, allIds;
+{
+  vtkNew<vtkTypeInt64Array> sendIds, allIds;
   vtkNew<vtkDoubleArray> sendPlaces, allPlaces;
   vtkUnstructuredGrid* owned = phases.Owned;
   if (owned->GetNumberOfCells() > 0 && phases.Me + 1 < phases.Ranks)
