@@ -2,6 +2,8 @@
 
 #include "vtkCBC3DArrayNames.h"
 
+#include "cbc3d/base/TetGeometry.h"
+
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCellType.h>
@@ -15,7 +17,7 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include <algorithm>
 #include <cmath>
@@ -107,11 +109,8 @@ double RunMesh::Add(const vtkTypeInt64 ids[4], const vtkTypeInt64 keys[4], const
     corners[c] = this->AddPoint(vtkIdType(ids[c]), keys[c], places + 3 * c);
   this->Corners.push_back(corners);
   this->Labels->InsertNextTuple1(label);
-  Eigen::Matrix3d edges;
-  for (int c = 1; c < 4; ++c)
-    for (int a = 0; a < 3; ++a)
-      edges(a, c - 1) = places[3 * c + a] - places[a];
-  return std::abs(edges.determinant()) / 6.0;
+  auto corner = [places](int c) { return Eigen::Vector3d(places[3 * c], places[3 * c + 1], places[3 * c + 2]); };
+  return std::abs(cbc3d::SignedVolume(corner(0), corner(1), corner(2), corner(3)));
 }
 
 void RunMesh::AddOwned(vtkUnstructuredGrid* owned, const std::vector<std::int64_t>& axisKeys,

@@ -23,12 +23,10 @@
 
 namespace
 {
-// The volume of the tet whose corners are `c`, from the corners' 3 x 4 matrix.
+// The volume of the tet whose corners are the columns of `c`.
 double TetVolume(const Eigen::Matrix<double, 3, 4>& c)
 {
-  Eigen::Matrix3d edges;
-  edges << c.col(1) - c.col(0), c.col(2) - c.col(0), c.col(3) - c.col(0);
-  return std::abs(edges.determinant()) / 6.0;
+  return std::abs(cbc3d::SignedVolume(c.col(0), c.col(1), c.col(2), c.col(3)));
 }
 } // namespace
 
