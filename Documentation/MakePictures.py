@@ -1,24 +1,36 @@
 # Renders the pictures in Documentation/images with the CBC3D plugin:
 #   xvfb-run -a -s "-screen 0 1280x1024x24 -noreset" pvpython Documentation/MakePictures.py \
 #     build/lib/paraview-5.11/plugins/CBC3D/CBC3D.so
-# The real-image pictures need ../shared/data and are skipped without it.
+# The real-image pictures need ../shared/data and are skipped without it. Names of pictures
+# after the plugin (lattice-brain.png ...) render those alone. Tissues are coloured with a
+# categorical map: one colour per label, named in the legend (picture_views.tissue_colours).
 import os
 import sys
 
 from paraview.simple import *  # noqa: F401,F403
 
 plugin = sys.argv[1] if len(sys.argv) > 1 else os.environ["CBC3D_PLUGIN"]
+ALL = ["lattice-nested-shells.png", "lattice-brain.png", "lattice-three-tissues.png", "refined-three-tissues.png",
+       "refined-nidus.png", "final-brain.png", "final-three-tissues.png", "sound-labels-brain.png"]
+wanted = set(sys.argv[2:]) or set(ALL)
+if wanted - set(ALL):
+    sys.exit("MakePictures.py: unknown pictures %s (known: %s)" % (sorted(wanted - set(ALL)), ", ".join(ALL)))
 LoadPlugin(plugin, remote=False, ns=globals())
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.dirname(here)
 shared = os.path.join(root, "..", "shared", "data")
 sys.path.insert(0, here)
-from picture_views import middle_clip, white_view  # noqa: E402
+from picture_views import (BRAIN, NESTED_SHELLS, THREE_TISSUES, middle_clip, tissue_colours,  # noqa: E402
+                           tissue_legend, white_view)
 
 
-def picture(image_path, edge, out_name, background=None, view_up=(0, 0, 1), direction=(1, -1, 0.6),
+def picture(image_path, edge, out_name, tissues=None, background=None, view_up=(0, 0, 1), direction=(1, -1, 0.6),
             refine=False, color_by="Label", final=False):
-    """The lattice (or the refined mesh) clipped by a plane through its centre, coloured by Label."""
+    """The lattice (or the refined mesh, or the whole method's) clipped by a plane through its
+    centre, coloured by tissue (one colour per label, named in the legend: tissues, (label, name,
+    colour) triples) or by another cell array (color_by, a continuous map)."""
+    if out_name not in wanted:
+        return
     image = OpenDataFile(image_path)
     lattice = CBC3DBCCLattice(Input=image)
     lattice.EdgeLength = edge
@@ -31,6 +43,7 @@ def picture(image_path, edge, out_name, background=None, view_up=(0, 0, 1), dire
     if final:
         lattice = CBC3DImageToMesh(Input=image)
         lattice.LatticeSize = edge
+        lattice.BoundaryDistance = 0  # 3/8 of this lattice size, as on the command line
         if background is not None:
             lattice.BackgroundLabels = background
     lattice.UpdatePipeline()
@@ -40,19 +53,26 @@ def picture(image_path, edge, out_name, background=None, view_up=(0, 0, 1), dire
         HideScalarBarIfNotNeeded(GetColorTransferFunction(name), view)
     display = Show(clip, view)
     display.SetRepresentationType("Surface With Edges")
+    display.EdgeColor = [0.15, 0.15, 0.15]  # dark grey: ParaView's navy edges tint every colour blue
     ColorBy(display, ("CELLS", color_by))
-    display.RescaleTransferFunctionToDataRange(True)
     lut = GetColorTransferFunction(color_by)
-    lut.ApplyPreset("Rainbow Uniform", True)
-    label_range = lattice.CellData[color_by].GetRange()
-    display.SetScalarBarVisibility(view, label_range[0] != label_range[1])
-    bar = GetScalarBar(lut, view)
-    bar.Visibility = int(label_range[0] != label_range[1])
-    bar.Title = color_by
-    bar.ComponentTitle = ""
-    bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
-    bar.TitleFontSize = bar.LabelFontSize = 20
-    bar.RangeLabelFormat = "%-#.0f"
+    if color_by == "Label":
+        tissue_colours(lut, tissues)
+        display.SetScalarBarVisibility(view, True)
+        tissue_legend(lut, view)
+    else:
+        lut.InterpretValuesAsCategories = 0
+        display.RescaleTransferFunctionToDataRange(True)
+        lut.ApplyPreset("Rainbow Uniform", True)
+        value_range = lattice.CellData[color_by].GetRange()
+        display.SetScalarBarVisibility(view, value_range[0] != value_range[1])
+        bar = GetScalarBar(lut, view)
+        bar.Visibility = int(value_range[0] != value_range[1])
+        bar.Title = color_by
+        bar.ComponentTitle = ""
+        bar.TitleColor = bar.LabelColor = [0.1, 0.1, 0.1]
+        bar.TitleFontSize = bar.LabelFontSize = 20
+        bar.RangeLabelFormat = "%-#.0f"
     view.ResetCamera()
     camera = view.GetActiveCamera()
     camera.SetFocalPoint(*centre)
@@ -92,6 +112,8 @@ def hinged_tets(mesh):
 def sound_labels_picture(image_path, edge, out_name, direction):
     """Majority labels (left) and sound labels (right): the brain's surface, with the tets that
     hang on the rest by an edge or a vertex in red."""
+    if out_name not in wanted:
+        return
     from paraview import servermanager
     from vtkmodules.util.numpy_support import numpy_to_vtk
     from vtkmodules.vtkCommonDataModel import vtkUnstructuredGrid
@@ -155,15 +177,17 @@ def vtk_array_sum(array):
     return sum(array.GetTuple1(i) for i in range(array.GetNumberOfTuples()))
 
 
-picture(os.path.join(root, "Data", "nested_shells.vti"), 2.0, "lattice-nested-shells.png")
+picture(os.path.join(root, "Data", "nested_shells.vti"), 2.0, "lattice-nested-shells.png", NESTED_SHELLS)
 if os.path.isdir(shared):
-    picture(os.path.join(shared, "cbc3d-brain.nii.gz"), 8.0, "lattice-brain.png", direction=(-1, -1, 0.6))
-    picture(os.path.join(shared, "nipype-tissue-labels.nii.gz"), 6.0, "lattice-three-tissues.png")
-    picture(os.path.join(shared, "nipype-tissue-labels.nii.gz"), 8.0, "refined-three-tissues.png", refine=True)
+    brain = os.path.join(shared, "cbc3d-brain.nii.gz")
+    three = os.path.join(shared, "nipype-tissue-labels.nii.gz")
+    picture(brain, 8.0, "lattice-brain.png", BRAIN, direction=(-1, -1, 0.6))
+    picture(three, 6.0, "lattice-three-tissues.png", THREE_TISSUES)
+    picture(three, 8.0, "refined-three-tissues.png", THREE_TISSUES, refine=True)
     picture(os.path.join(shared, "cbc3d-nidus.nii.gz"), 8.0, "refined-nidus.png", refine=True, direction=(1, -1, 1.2),
             color_by="RefinementLevel")
-    picture(os.path.join(shared, "cbc3d-brain.nii.gz"), 8.0, "final-brain.png", direction=(-1, -1, 0.6), final=True)
-    picture(os.path.join(shared, "nipype-tissue-labels.nii.gz"), 8.0, "final-three-tissues.png", final=True)
+    picture(brain, 8.0, "final-brain.png", BRAIN, direction=(1, -0.5, 0.4), final=True)  # onto the cut
+    picture(three, 8.0, "final-three-tissues.png", THREE_TISSUES, direction=(1, -0.5, 0.4), final=True)
     sound_labels_picture(os.path.join(shared, "cbc3d-brain.nii.gz"), 8.0, "sound-labels-brain.png", direction=(0, -1, 0.5))
 else:
     print("no ../shared/data: real-image pictures skipped")

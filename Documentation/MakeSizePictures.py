@@ -13,24 +13,12 @@ LoadPlugin(plugin, remote=False, ns=globals())
 here = os.path.dirname(os.path.abspath(__file__))
 head = os.path.join(here, "..", "..", "shared", "data", "nyhead-6tissue-1mm.nii.gz")
 sys.path.insert(0, here)
-from picture_views import middle_clip, white  # noqa: E402
+from picture_views import NEW_YORK_HEAD, middle_clip, tissue_colours, white  # noqa: E402
 
 if not os.path.exists(head):
     print("skipped: %s is absent" % head)
     sys.exit(0)
 BUDGETS = (50000, 300000, 1000000)
-# The New York Head's tissues as ROAST names them, each with its own colour.
-TISSUES = [("1", "white matter", (0.95, 0.93, 0.85)), ("2", "grey matter", (0.55, 0.55, 0.6)),
-           ("3", "CSF", (0.3, 0.6, 0.95)), ("4", "bone", (0.95, 0.85, 0.55)),
-           ("5", "skin and soft tissue", (0.9, 0.6, 0.55)), ("6", "air", (0.7, 0.9, 0.75))]
-
-
-def tissue_colours(lut):
-    """One colour per label, named in the legend: a categorical map, not a continuous bar."""
-    lut.InterpretValuesAsCategories = 1
-    lut.Annotations = [value for label, name, _ in TISSUES for value in (label, name)]
-    lut.IndexedColors = [c for _, _, colour in TISSUES for c in colour]
-
 
 image = OpenDataFile(head)
 layout = CreateLayout("budgets")
@@ -56,7 +44,7 @@ for i, budget in enumerate(BUDGETS):
     display.EdgeColor = [0.15, 0.15, 0.15]
     ColorBy(display, ("CELLS", "Label"))
     lut = GetColorTransferFunction("Label")
-    tissue_colours(lut)
+    tissue_colours(lut, NEW_YORK_HEAD)  # one colour per tissue, named in the legend
     display.SetScalarBarVisibility(view, i == 0)
     if i == 0:
         bar = GetScalarBar(lut, view)
