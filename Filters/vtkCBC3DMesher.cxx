@@ -103,6 +103,7 @@ vtkMultiProcessController* RankController(vtkInformation* outInfo)
     : 1;
   return controller && pieces > 1 && controller->GetNumberOfProcesses() == pieces ? controller : nullptr;
 }
+
 } // namespace
 
 int vtkCBC3DMesher::RequestInformation(
@@ -130,7 +131,7 @@ int vtkCBC3DMesher::RequestUpdateExtent(
   {
     // The slab and its halo only: a rank never asks for the whole image.
     const vtkCBC3DPieces::SlabPlan plan = vtkCBC3DPieces::PlanSlabs(whole, this->InformationSpacing, h,
-      this->RankHalo, controller->GetNumberOfProcesses(), controller->GetLocalProcessId());
+      this->RankHalo, controller->GetNumberOfProcesses(), controller->GetLocalProcessId(), this->SlabWeights(inInfo));
     vtkCBC3DPieces::PieceExtent(plan, whole, extent);
   }
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_EXTENT(), extent, 6);
@@ -139,7 +140,14 @@ int vtkCBC3DMesher::RequestUpdateExtent(
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
   inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
   inInfo->Set(vtkStreamingDemandDrivenPipeline::EXACT_EXTENT(), 1);
+  // Ghost tets are made here (AddGhostCells), not from ghost voxels.
+  inInfo->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
   return 1;
+}
+
+std::vector<double> vtkCBC3DMesher::SlabWeights(vtkInformation* inputInfo) const
+{
+  return this->BalanceTissue ? vtkCBC3DPieces::TissuePerSlice(inputInfo) : std::vector<double>();
 }
 
 bool vtkCBC3DMesher::PreparePiece(vtkImageData* image, vtkInformation* inputInfo, Piece& piece)
@@ -158,7 +166,7 @@ bool vtkCBC3DMesher::PreparePiece(vtkImageData* image, vtkInformation* inputInfo
   inputInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
   const double h = this->EdgeLength > 0.0 ? this->EdgeLength : this->AutomaticLatticeEdge();
   piece.Plan = vtkCBC3DPieces::PlanSlabs(whole, image->GetSpacing(), h, this->RankHalo,
-    piece.Controller->GetNumberOfProcesses(), piece.Controller->GetLocalProcessId());
+    piece.Controller->GetNumberOfProcesses(), piece.Controller->GetLocalProcessId(), this->SlabWeights(inputInfo));
   vtkDataArray* labels = vtkCBC3DConvert::ChooseLabelArray(this->GetInputArrayInformation(0), image);
   int lower[3], upper[3];
   piece.HasTissue = labels && vtkCBC3DPieces::TissueBox(image, labels, this->BackgroundLabels, lower, upper);
@@ -213,7 +221,11 @@ int vtkCBC3DMesher::RequestData(
     output->Initialize();
     return 0;
   }
-  const bool done = this->RunStages(image, piece.Controller ? &piece : nullptr, output);
+  bool done = this->RunStages(image, piece.Controller ? &piece : nullptr, output);
+  if (done && piece.Controller)
+  {
+    done = vtkCBC3DPieces::AddGhostCells(piece.Controller, outputVector->GetInformationObject(0), output);
+  }
   this->SetProgressText(nullptr);
   if (!done)
   {

@@ -30,6 +30,7 @@
 #include <vtkSmartPointer.h> // For KeepOwnTets
 
 #include <string> // For RunStage
+#include <vector> // For SlabWeights
 
 class vtkImageData;
 class vtkUnstructuredGrid;
@@ -132,6 +133,22 @@ public:
   vtkGetMacro(RankHalo, double);
   ///@}
 
+  ///@{
+  /**
+   * Over MPI ranks: whether the slabs share the image's tissue evenly rather than its slices
+   * (default off: even slices). The tissue per slice comes from vtkCBC3DNIfTIReader
+   * (TISSUE_PER_SLICE), upstream of the mesher; from other readers the slabs stay even. No slab
+   * is thinner than 6 lattice cubes. The slices of a head's neck and crown hold little tissue,
+   * so even slices leave the middle rank most of the work and memory. Off by default: the
+   * deformation over ranks holds the points on the cuts in its first run, and where a cut falls
+   * decides which tissue's maximum Hausdorff distance that costs (Documentation: Meshing on a
+   * cluster).
+   */
+  vtkSetMacro(BalanceTissue, bool);
+  vtkGetMacro(BalanceTissue, bool);
+  vtkBooleanMacro(BalanceTissue, bool);
+  ///@}
+
 protected:
   vtkCBC3DMesher() = default;
   ~vtkCBC3DMesher() override = default;
@@ -152,10 +169,13 @@ protected:
   int TargetPlacement = 1; // vtkCBC3DDeformation::VOXEL_FACE
   bool KeepVolumes = true;
   double RankHalo = 4.0;
+  bool BalanceTissue = false;
 
 private:
   struct Piece;
   bool PreparePiece(vtkImageData* image, vtkInformation* inputInfo, Piece& piece);
+  // The weight of each slice in cutting the slabs: its tissue with BalanceTissue, else none.
+  std::vector<double> SlabWeights(vtkInformation* inputInfo) const;
   bool RunStages(vtkImageData* image, Piece* piece, vtkUnstructuredGrid* output);
   bool FinishStage(const char* name, const std::string& error, Piece* piece);
   void PrepareStage(vtkCBC3DAlgorithm* filter, const char* arrayName, bool imageOnPort1) const;

@@ -247,3 +247,52 @@ vtkSmartPointer<vtkDataArray> InflateNIfTIVoxels(
   array->SetVoidArray(block, voxels, 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
   return array;
 }
+
+bool CountNIfTITissuePerSlice(
+  const std::string& fileName, int scalarType, const int wholeExtent[6], std::vector<double>& perSlice)
+{
+  perSlice.clear();
+  std::size_t dims[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    if (wholeExtent[2 * a + 1] < wholeExtent[2 * a])
+      return false;
+    dims[a] = std::size_t(wholeExtent[2 * a + 1] - wholeExtent[2 * a] + 1);
+  }
+  const int valueBytes = vtkDataArray::GetDataTypeSize(scalarType);
+  std::size_t offset = 0;
+  bool swap = false; // (a value is 0 in either byte order)
+  if (valueBytes <= 0 ||
+    !(vtksys::SystemTools::StringEndsWith(fileName, ".nii.gz") || vtksys::SystemTools::StringEndsWith(fileName, ".nii")) ||
+    !ReadVoxelLayout(fileName, offset, swap))
+    return false;
+  GzipStream stream(fileName);
+  std::vector<unsigned char> slice(valueBytes * dims[0] * dims[1]);
+  std::vector<std::int64_t> counts(dims[0] + dims[1] + dims[2], 0);
+  std::int64_t* const alongX = counts.data();
+  std::int64_t* const alongY = alongX + dims[0];
+  std::int64_t* const alongZ = alongY + dims[1];
+  if (!stream.Skip(offset))
+    return false;
+  for (std::size_t k = 0; k < dims[2]; ++k)
+  {
+    if (!stream.Read(slice.data(), slice.size()))
+      return false;
+    const unsigned char* value = slice.data();
+    for (std::size_t j = 0; j < dims[1]; ++j)
+      for (std::size_t i = 0; i < dims[0]; ++i, value += valueBytes)
+      {
+        unsigned char bits = 0;
+        for (int b = 0; b < valueBytes; ++b)
+          bits |= value[b];
+        if (bits)
+        {
+          ++alongX[i];
+          ++alongY[j];
+          ++alongZ[k];
+        }
+      }
+  }
+  perSlice.assign(counts.begin(), counts.end());
+  return true;
+}

@@ -5,6 +5,7 @@
 #include <vtkSmartPointer.h>
 
 #include <string>
+#include <vector>
 
 /// The voxels of `extent` (within `wholeExtent`, the image's) of a single-file NIfTI-1 image
 /// compressed as .nii.gz. `scalarType` and `wholeExtent` are what vtkNIFTIImageReader read from
@@ -21,5 +22,12 @@
 /// image; the stream past the slab's last slice is not read.
 vtkSmartPointer<vtkDataArray> InflateNIfTIVoxels(
   const std::string& fileName, int scalarType, const int wholeExtent[6], const int extent[6]);
+
+/// The voxels of a value other than 0 in each slice of a single-file NIfTI-1 image (.nii or
+/// .nii.gz) of `wholeExtent`, along x, then y, then z, into `perSlice`: one pass through zlib's
+/// stream, a slice at a time. False, with `perSlice` empty, where InflateNIfTIVoxels would not
+/// read the file, or the stream ends short.
+bool CountNIfTITissuePerSlice(
+  const std::string& fileName, int scalarType, const int wholeExtent[6], std::vector<double>& perSlice);
 
 #endif

@@ -9,8 +9,10 @@
 #include <vtkDataObject.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
+#include <vtkInformationDoubleVectorKey.h>
 #include <vtkInformationVector.h>
 #include <vtkMatrix4x4.h>
+#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkNIFTIImageHeader.h>
 #include <vtkNIFTIImageReader.h>
@@ -31,6 +33,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkCBC3DNIfTIReader);
+vtkInformationKeyMacro(vtkCBC3DNIfTIReader, TISSUE_PER_SLICE, DoubleVector);
 
 namespace
 {
@@ -292,7 +295,39 @@ int vtkCBC3DNIfTIReader::RequestInformation(
   outInfo->Set(vtkDataObject::DIRECTION(), this->Direction, 9);
   vtkDataObject::SetPointDataActiveScalarInfo(
     outInfo, this->Reader->GetDataScalarType(), this->Reader->GetNumberOfScalarComponents());
+  this->GiveTissuePerSlice(outInfo);
   return 1;
+}
+
+void vtkCBC3DNIfTIReader::GiveTissuePerSlice(vtkInformation* outInfo)
+{
+  outInfo->Remove(TISSUE_PER_SLICE());
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  const bool ranks = controller && controller->GetNumberOfProcesses() > 1;
+  // (InflateNIfTIVoxels' file order: only where VTK keeps it.)
+  if (!(ranks || this->CountTissuePerSlice) || this->Reader->GetNumberOfScalarComponents() != 1 ||
+    !(this->Reader->GetQFac() > 0))
+  {
+    return;
+  }
+  const long time = vtksys::SystemTools::ModifiedTime(this->FileName);
+  const unsigned long size = vtksys::SystemTools::FileLength(this->FileName);
+  if (this->CountedFile != this->FileName || this->CountedTime != time || this->CountedSize != size)
+  {
+    int whole[6];
+    outInfo->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+    this->CountedFile = this->FileName;
+    this->CountedTime = time;
+    this->CountedSize = size;
+    if (!CountNIfTITissuePerSlice(this->FileName, this->Reader->GetDataScalarType(), whole, this->TissuePerSlice))
+    {
+      this->TissuePerSlice.clear(); // (the read itself reports what is wrong with the file)
+    }
+  }
+  if (!this->TissuePerSlice.empty())
+  {
+    outInfo->Set(TISSUE_PER_SLICE(), this->TissuePerSlice.data(), int(this->TissuePerSlice.size()));
+  }
 }
 
 bool vtkCBC3DNIfTIReader::ReadVoxels(vtkImageData* output, const int extent[6])

@@ -2,31 +2,70 @@
 
 #include "vtkCBC3DArrayNames.h"
 #include "vtkCBC3DComponentJoin.h"
+#include "vtkCBC3DNIfTIReader.h"
 
 #include "cbc3d/base/LabelImage.h"
 #include "cbc3d/refinement/RankPasses.h"
 
 #include <vtkArrayDispatch.h>
 #include <vtkDoubleArray.h>
+#include <vtkCommunicator.h>
+#include <vtkAlgorithm.h>
 #include <vtkDataArrayRange.h>
+#include <vtkExecutive.h>
+#include <vtkFieldData.h>
+#include <vtkGhostCellsGenerator.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationDoubleVectorKey.h>
+#include <vtkInformationExecutivePortKey.h>
 #include <vtkMatrix3x3.h>
 #include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numeric>
 
 namespace vtkCBC3DPieces
 {
+namespace
+{
+// The cuts between `pieces` slabs of `count` slices from `first`, each slab holding about an even
+// share of the weights (one per slice), and none thinner than `thinnest` slices.
+std::vector<int> WeightedCuts(int first, int count, int pieces, const double* weights, int thinnest)
+{
+  double total = 0.0;
+  for (int s = 0; s < count; ++s)
+    total += weights[s];
+  std::vector<int> cuts(pieces + 1, first);
+  cuts[pieces] = first + count;
+  double below = 0.0; // the weight of the slices before slice s
+  for (int s = 0, r = 1; s < count && r < pieces; ++s)
+  {
+    // The cut goes before the first slice whose end passes the share, or after it where that
+    // end lies nearer the share.
+    for (; r < pieces && below + weights[s] >= total * r / pieces; ++r)
+      cuts[r] = first + s + (below + weights[s] - total * r / pieces < total * r / pieces - below ? 1 : 0);
+    below += weights[s];
+  }
+  for (int r = 1; r < pieces; ++r)
+    cuts[r] = std::max(cuts[r], cuts[r - 1] + thinnest);
+  for (int r = pieces - 1; r >= 1; --r)
+    cuts[r] = std::min(cuts[r], cuts[r + 1] - thinnest);
+  return cuts;
+}
+} // namespace
+
 SlabPlan PlanSlabs(const int wholeExtent[6], const double spacing[3], double h, double haloCubes, int pieces,
-  int piece)
+  int piece, const std::vector<double>& tissuePerSlice)
 {
   SlabPlan plan;
   plan.Pieces = std::max(1, pieces);
@@ -43,9 +82,25 @@ SlabPlan PlanSlabs(const int wholeExtent[6], const double spacing[3], double h, 
   }
   const int first = wholeExtent[2 * plan.Axis];
   const std::int64_t count = std::int64_t(wholeExtent[2 * plan.Axis + 1]) - first + 1;
-  for (int r = 0; r <= plan.Pieces; ++r)
+  int dims[3], before = 0; // the slices along the axes before the plan's, in tissuePerSlice
+  for (int a = 0; a < 3; ++a)
   {
-    plan.Cuts.push_back(first + int(count * r / plan.Pieces));
+    dims[a] = wholeExtent[2 * a + 1] - wholeExtent[2 * a] + 1;
+    before += a < plan.Axis ? dims[a] : 0;
+  }
+  const double tissue = tissuePerSlice.size() == std::size_t(dims[0]) + dims[1] + dims[2]
+    ? std::accumulate(tissuePerSlice.begin() + before, tissuePerSlice.begin() + before + count, 0.0)
+    : 0.0;
+  if (tissue > 0.0)
+  {
+    const int thinnest = int(std::min<std::int64_t>(
+      count / plan.Pieces, std::int64_t(std::ceil(MinimumSlabCubes * h / spacing[plan.Axis]))));
+    plan.Cuts = WeightedCuts(first, int(count), plan.Pieces, tissuePerSlice.data() + before, thinnest);
+  }
+  else
+  {
+    for (int r = 0; r <= plan.Pieces; ++r)
+      plan.Cuts.push_back(first + int(count * r / plan.Pieces));
   }
   plan.HaloVoxels = int(std::ceil(haloCubes * h / spacing[plan.Axis])) + 1;
   return plan;
@@ -289,5 +344,47 @@ bool AddLatticeKeys(vtkUnstructuredGrid* mesh, const LatticeKeys& keys, std::str
   }
   mesh->GetPointData()->AddArray(ids);
   return true;
+}
+std::vector<double> TissuePerSlice(vtkInformation* inputInfo)
+{
+  // Up through the filters of one input each between the reader and here: ParaView puts its
+  // vtkPVPostFilter after every source, and the executives pass on only the keys they know.
+  vtkInformationDoubleVectorKey* key = vtkCBC3DNIfTIReader::TISSUE_PER_SLICE();
+  for (vtkInformation* info = inputInfo; info;)
+  {
+    if (info->Has(key))
+      return std::vector<double>(info->Get(key), info->Get(key) + info->Length(key));
+    vtkExecutive* producer = vtkExecutive::PRODUCER()->GetExecutive(info);
+    vtkAlgorithm* algorithm = producer ? producer->GetAlgorithm() : nullptr;
+    info = algorithm && algorithm->GetNumberOfInputPorts() == 1 && algorithm->GetNumberOfInputConnections(0) == 1
+      ? algorithm->GetInputInformation(0, 0)
+      : nullptr;
+  }
+  return {};
+}
+
+bool AddGhostCells(vtkMultiProcessController* controller, vtkInformation* outInfo, vtkUnstructuredGrid* output)
+{
+  const int asked = outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS())
+    ? outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS())
+    : 0;
+  int levels = 0;
+  controller->AllReduce(&asked, &levels, 1, vtkCommunicator::MAX_OP);
+  if (levels <= 0)
+    return true;
+  vtkNew<vtkUnstructuredGrid> piece;
+  piece->ShallowCopy(output);
+  vtkNew<vtkGhostCellsGenerator> ghosts;
+  ghosts->SetController(controller);
+  ghosts->BuildIfRequiredOff();
+  ghosts->SetNumberOfGhostLayers(levels);
+  ghosts->SetInputData(piece);
+  const bool made = ghosts->GetExecutive()->Update() != 0;
+  if (made)
+  {
+    output->ShallowCopy(ghosts->GetOutputDataObject(0));
+    output->GetFieldData()->ShallowCopy(piece->GetFieldData());
+  }
+  return AllAgree(controller, made);
 }
 } // namespace vtkCBC3DPieces

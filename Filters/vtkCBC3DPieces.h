@@ -25,6 +25,7 @@
 
 class vtkDataArray;
 class vtkImageData;
+class vtkInformation;
 class vtkMultiProcessController;
 class vtkUnstructuredGrid;
 
@@ -45,10 +46,17 @@ struct SlabPlan
   int HaloVoxels = 0;
 };
 
+/// No slab is thinner than this many cubes (or than an even share of the slices, where that is
+/// less): the deformation's bands (vtkCBC3DBandTets::ReachCubes) then reach no farther than the
+/// next slab.
+constexpr double MinimumSlabCubes = 6.0;
+
 /// Splits the whole extent into `pieces` slabs along the longest physical axis; the halo is
-/// `haloCubes` cubes of edge `h` (mm).
+/// `haloCubes` cubes of edge `h` (mm). The slabs hold an even share of the slices, or, given
+/// `tissuePerSlice` (the tissue voxels of each slice along x, then y, then z, as
+/// vtkCBC3DNIfTIReader::TISSUE_PER_SLICE gives them), an even share of the tissue.
 SlabPlan PlanSlabs(const int wholeExtent[6], const double spacing[3], double h, double haloCubes, int pieces,
-  int piece);
+  int piece, const std::vector<double>& tissuePerSlice = {});
 
 /// The extent a piece reads: its slab and the halo, within the whole extent.
 void PieceExtent(const SlabPlan& plan, const int wholeExtent[6], int extent[6]);
@@ -64,6 +72,19 @@ bool AgreeOnTissueBox(vtkMultiProcessController* controller, bool has, const int
 
 /// Whether every rank says yes (a collective: every rank calls it as often).
 bool AllAgree(vtkMultiProcessController* controller, bool yes);
+
+/// The tissue of each slice where the reader counted it (vtkCBC3DNIfTIReader::TISSUE_PER_SLICE,
+/// on the input or up a chain of one-input filters), so that the slabs share the tissue rather
+/// than the slices: the slices of a head's neck and crown hold little of it. Empty where it did
+/// not.
+std::vector<double> TissuePerSlice(vtkInformation* inputInfo);
+
+/// The ghost cells asked of a rank's piece (UPDATE_NUMBER_OF_GHOST_LEVELS on `outInfo`), in
+/// VTK's way: vtkGhostCellsGenerator adds the neighbours' tets around the piece, joined by
+/// GlobalIds and marked DUPLICATECELL in vtkGhostType, for the filters downstream that need
+/// them. A collective call: every rank adds the most that any rank asks for. False on every
+/// rank where that fails on one.
+bool AddGhostCells(vtkMultiProcessController* controller, vtkInformation* outInfo, vtkUnstructuredGrid* output);
 
 /// Where lattice points sit in the whole image's lattice.
 struct LatticeKeys
