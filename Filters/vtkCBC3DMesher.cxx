@@ -103,7 +103,6 @@ vtkMultiProcessController* RankController(vtkInformation* outInfo)
     : 1;
   return controller && pieces > 1 && controller->GetNumberOfProcesses() == pieces ? controller : nullptr;
 }
-
 } // namespace
 
 int vtkCBC3DMesher::RequestInformation(
