@@ -7,7 +7,7 @@
 # The images are voxel noise of 2 to 5 labels, some smoothed by a 3^3 or 5^3 majority (specks,
 # thin sheets, pockets, diagonal contacts), 16 to 39 voxels a side, anisotropic spacing, at
 # lattices of 2 to 8 spacings, with face or centre targets. The cbc3d of 2026-12-03 before
-# sound labels on every input (Benchmarks.md, entry 12) fails 4 of these 12 images (its manifold repair went round in cycles where
+# sound labels on every input (Benchmarks.md, "Changes that alter meshes": 2026-12-03, 89d3a11) fails 4 of these 12 images (its manifold repair went round in cycles where
 # the mesh itself pinches) and takes 130 s against 19 s.
 import os
 import subprocess
