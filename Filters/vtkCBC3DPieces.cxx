@@ -7,11 +7,11 @@
 #include "cbc3d/base/LabelImage.h"
 #include "cbc3d/refinement/RankPasses.h"
 
-#include <vtkArrayDispatch.h>
-#include <vtkDoubleArray.h>
-#include <vtkCommunicator.h>
 #include <vtkAlgorithm.h>
+#include <vtkArrayDispatch.h>
+#include <vtkCommunicator.h>
 #include <vtkDataArrayRange.h>
+#include <vtkDoubleArray.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
 #include <vtkGhostCellsGenerator.h>
@@ -345,6 +345,7 @@ bool AddLatticeKeys(vtkUnstructuredGrid* mesh, const LatticeKeys& keys, std::str
   mesh->GetPointData()->AddArray(ids);
   return true;
 }
+
 std::vector<double> TissuePerSlice(vtkInformation* inputInfo)
 {
   // Up through the filters of one input each between the reader and here: ParaView puts its
