@@ -32,6 +32,7 @@
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
+#include <numeric>
 
 #include <string>
 #include <vector>
@@ -78,6 +79,23 @@ struct Stage
   const char* Name;
   double Share;
 };
+
+// The stages a run goes through, with their shares of the progress bar.
+std::vector<Stage> ChooseStages(vtkCBC3DAlgorithm* lattice, vtkCBC3DRefinement* refinement,
+  vtkCBC3DAlgorithm* deformation, vtkCBC3DAlgorithm* quality, bool deforms)
+{
+  std::vector<Stage> stages = { { lattice, "BCC lattice", 0.15 } };
+  if (refinement->AsksForRefinement())
+  {
+    stages.push_back({ refinement, "Red-green refinement", 0.25 });
+  }
+  if (deforms)
+  {
+    stages.push_back({ deformation, "Deformation", 0.5 });
+  }
+  stages.push_back({ quality, "Quality", 0.1 });
+  return stages;
+}
 } // namespace
 
 struct vtkCBC3DMesher::Piece
@@ -239,17 +257,7 @@ bool vtkCBC3DMesher::RunStages(vtkImageData* image, Piece* piece, vtkUnstructure
   vtkNew<vtkCBC3DRefinement> refinement;
   vtkNew<vtkCBC3DDeformation> deformation;
   vtkNew<vtkCBC3DMeshQuality> quality;
-  lattice->SetEdgeLength(this->EdgeLength);
-  refinement->SetFidelity(this->Fidelity);
-  refinement->SetBoundaryDistance(this->BoundaryDistance);
-  refinement->SetMinimumEdgeLength(this->MinimumEdgeLength);
-  this->CopySizeControlsTo(lattice);
-  this->CopySizeControlsTo(refinement);
-  this->CopySizeControlsTo(deformation);
-  deformation->SetIterations(this->Iterations);
-  deformation->SetPattern(this->Pattern);
-  deformation->SetTargetPlacement(this->TargetPlacement);
-  deformation->SetKeepVolumes(this->KeepVolumes);
+  this->ConfigureStages(lattice, refinement, deformation);
   if (piece)
   {
     piece->Passes = vtkCBC3DPieces::MakeRankPasses(piece->Controller, piece->Plan, image);
@@ -260,27 +268,16 @@ bool vtkCBC3DMesher::RunStages(vtkImageData* image, Piece* piece, vtkUnstructure
     ? arrayRequest->Get(vtkDataObject::FIELD_NAME())
     : nullptr;
 
-  std::vector<Stage> stages = { { lattice, "BCC lattice", 0.15 } };
-  if (refinement->AsksForRefinement())
-  {
-    stages.push_back({ refinement, "Red-green refinement", 0.25 });
-  }
-  if (this->Iterations > 0)
-  {
-    stages.push_back({ deformation, "Deformation", 0.5 });
-  }
-  stages.push_back({ quality, "Quality", 0.1 });
+  const std::vector<Stage> stages = ChooseStages(lattice, refinement, deformation, quality, this->Iterations > 0);
   // Over ranks, the lattice points get their global ids and each rank keeps its own tets before
   // deformation moves them (vtkCBC3DRankDeformation).
   const std::size_t namedStage = stages.size() - (this->Iterations > 0 ? 3 : 2);
 
   bool meshes = !piece || piece->HasTissue;
   vtkSmartPointer<vtkUnstructuredGrid> current = vtkSmartPointer<vtkUnstructuredGrid>::New();
-  double shift = 0.0, total = 0.0;
-  for (const Stage& stage : stages)
-  {
-    total += stage.Share;
-  }
+  double shift = 0.0;
+  const double total =
+    std::accumulate(stages.begin(), stages.end(), 0.0, [](double sum, const Stage& stage) { return sum + stage.Share; });
   for (std::size_t s = 0; s < stages.size(); ++s)
   {
     vtkCBC3DAlgorithm* filter = stages[s].Filter;
@@ -333,10 +330,8 @@ bool vtkCBC3DMesher::RunStages(vtkImageData* image, Piece* piece, vtkUnstructure
       meshes = meshes && current->GetNumberOfCells() > 0;
       // The piece's lattice and refined mesh, halo and all, are done with: free them before
       // deformation builds its own structures.
-      for (std::size_t done = 0; done <= s; ++done)
-      {
-        stages[done].Filter->GetOutputDataObject(0)->Initialize();
-      }
+      std::for_each(stages.begin(), stages.begin() + s + 1,
+        [](const Stage& done) { done.Filter->GetOutputDataObject(0)->Initialize(); });
     }
     if (piece && s + 2 == stages.size())
     {
@@ -349,6 +344,22 @@ bool vtkCBC3DMesher::RunStages(vtkImageData* image, Piece* piece, vtkUnstructure
     output->ShallowCopy(quality->GetOutput());
   }
   return true;
+}
+
+void vtkCBC3DMesher::ConfigureStages(
+  vtkCBC3DBCCLattice* lattice, vtkCBC3DRefinement* refinement, vtkCBC3DDeformation* deformation) const
+{
+  lattice->SetEdgeLength(this->EdgeLength);
+  refinement->SetFidelity(this->Fidelity);
+  refinement->SetBoundaryDistance(this->BoundaryDistance);
+  refinement->SetMinimumEdgeLength(this->MinimumEdgeLength);
+  this->CopySizeControlsTo(lattice);
+  this->CopySizeControlsTo(refinement);
+  this->CopySizeControlsTo(deformation);
+  deformation->SetIterations(this->Iterations);
+  deformation->SetPattern(this->Pattern);
+  deformation->SetTargetPlacement(this->TargetPlacement);
+  deformation->SetKeepVolumes(this->KeepVolumes);
 }
 
 void vtkCBC3DMesher::PrepareStage(vtkCBC3DAlgorithm* filter, const char* arrayName, bool imageOnPort1) const

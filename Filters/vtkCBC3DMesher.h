@@ -178,6 +178,9 @@ private:
   std::vector<double> SlabWeights(vtkInformation* inputInfo) const;
   bool RunStages(vtkImageData* image, Piece* piece, vtkUnstructuredGrid* output);
   bool FinishStage(const char* name, const std::string& error, Piece* piece);
+  // The stage filters' settings from the mesher's.
+  void ConfigureStages(class vtkCBC3DBCCLattice* lattice, class vtkCBC3DRefinement* refinement,
+    class vtkCBC3DDeformation* deformation) const;
   void PrepareStage(vtkCBC3DAlgorithm* filter, const char* arrayName, bool imageOnPort1) const;
   std::string RunStage(vtkAlgorithm* filter, const char* name, double shift, double scale);
   bool NamePiecePoints(vtkImageData* image, vtkAlgorithm* lattice, vtkUnstructuredGrid* mesh, Piece* piece);
