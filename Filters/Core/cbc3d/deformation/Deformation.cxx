@@ -372,6 +372,21 @@ bool RunIterations(Registration& registration, int iterations, std::size_t sourc
   }
   return true;
 }
+
+// Each tissue's volume to keep: its voxels', moved by the tissue's VolumeOffsets.
+std::map<std::int32_t, double> VolumeTargets(const LabelImage& image, const DeformationParams& params)
+{
+  std::map<std::int32_t, double> targets = TissueImageVolumes(image, params.NumberOfThreads);
+  for (const auto& [tissue, offset] : params.VolumeOffsets)
+  {
+    const auto target = targets.find(tissue); // (background labels have none)
+    if (target != targets.end())
+    {
+      target->second += offset;
+    }
+  }
+  return targets;
+}
 } // namespace
 
 Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
@@ -445,16 +460,7 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   if (params.KeepVolumes && result.Iterations > 0)
   {
     // Half a voxel per round at most: the shortfalls left are well under a voxel deep.
-    std::map<std::int32_t, double> targets = TissueImageVolumes(image, threads);
-    for (const auto& [tissue, offset] : params.VolumeOffsets)
-    {
-      const auto target = targets.find(tissue); // (background labels have none)
-      if (target != targets.end())
-      {
-        target->second += offset;
-      }
-    }
-    const TissueVolumeKeeper volumes(mesh, faces, std::move(targets), 0.5 * image.Spacing.minCoeff());
+    const TissueVolumeKeeper volumes(mesh, faces, VolumeTargets(image, params), 0.5 * image.Spacing.minCoeff());
     std::vector<PointId> moving;
     for (const PointId p : sources.Points)
     {
