@@ -134,10 +134,10 @@ int vtkCBC3DDeformation::RequestData(
   {
     return 0;
   }
-  cbc3d::TetMesh moved;
+  std::vector<Eigen::Vector3d> moved;
   cbc3d::DeformationResult result;
   const cbc3d::Status status =
-    cbc3d::DeformMesh(*image, mesh, params, moved, result, vtkCBC3DConvert::MakeProgress(this));
+    cbc3d::DeformPoints(*image, mesh, params, moved, result, vtkCBC3DConvert::MakeProgress(this));
   if (!status.IsOk())
   {
     return this->EndOnFailure(status, output);
@@ -146,14 +146,14 @@ int vtkCBC3DDeformation::RequestData(
   output->ShallowCopy(input);
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(moved.Points.size()));
+  points->SetNumberOfPoints(static_cast<vtkIdType>(moved.size()));
   vtkNew<vtkDoubleArray> displacement;
   displacement->SetName(vtkCBC3DArrayNames::Displacement);
   displacement->SetNumberOfComponents(3);
-  displacement->SetNumberOfTuples(static_cast<vtkIdType>(moved.Points.size()));
-  for (std::size_t p = 0; p < moved.Points.size(); ++p)
+  displacement->SetNumberOfTuples(static_cast<vtkIdType>(moved.size()));
+  for (std::size_t p = 0; p < moved.size(); ++p)
   {
-    points->SetPoint(static_cast<vtkIdType>(p), moved.Points[p].data());
+    points->SetPoint(static_cast<vtkIdType>(p), moved[p].data());
     displacement->SetTuple(static_cast<vtkIdType>(p), result.Displacement[p].data());
   }
   output->SetPoints(points);

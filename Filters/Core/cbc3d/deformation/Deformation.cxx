@@ -6,6 +6,7 @@
 #include "cbc3d/deformation/FidelityGuard.h"
 #include "cbc3d/deformation/GuardedStep.h"
 #include "cbc3d/deformation/InteriorSmoothing.h"
+#include "cbc3d/deformation/StopRequests.h"
 #include "cbc3d/deformation/Matcher.h"
 #include "cbc3d/deformation/SurfaceSources.h"
 #include "cbc3d/deformation/TissueVolumes.h"
@@ -31,38 +32,13 @@ namespace
 // about ten.
 constexpr int MaximumRigidRounds = 20;
 
-// Setting up and every iteration take seconds on large meshes: a stop request is looked for
-// between the steps, and inside the longest ones through KeepGoing() (reporting the fraction
-// last reached). A stop, once seen, is kept: a step cut short is never used.
-class StopRequests
-{
-public:
-  explicit StopRequests(const Progress& progress)
-    : Report(progress)
-  {
-  }
-  bool Stopped(double fraction)
-  {
-    this->Reached = fraction;
-    this->Stop = this->Stop || !cbc3d::KeepGoing(this->Report, fraction);
-    return this->Stop;
-  }
-  bool Stopped() const { return this->Stop; }
-  const std::function<bool()> KeepGoing = [this] { return !this->Stopped(this->Reached); };
-
-private:
-  const Progress& Report;
-  bool Stop = false;
-  double Reached = 0.0;
-};
-
 // The paper's registration iterations over a set-up mesh: matching, a rigid fit, steering the
 // farthest vertices, an elastic step with the goals as penalty springs, guarded.
 class Registration
 {
 public:
   Registration(const TetMesh& mesh, const SurfaceSources& sources, const Matcher& matcher,
-    FidelityGuard& fidelity, Eigen::SparseMatrix<double>& stiffness,
+    FidelityGuard& fidelity, BlockMatrix&& stiffness,
     const DeformationParams& params, const StepBounds& bounds, double negligibleMove)
     : Mesh(mesh)
     , Sources(sources)
@@ -75,7 +51,7 @@ public:
     , Reach(mesh.Points.size())
     , Search(mesh.Points.size())
     , Interior(mesh.Points.size(), 1)
-    , Elastic(stiffness)
+    , Elastic(std::move(stiffness))
   {
     // How far from the image a vertex may lie before it is steered, and how far it looks.
     for (std::size_t p = 0; p < mesh.Points.size(); ++p)
@@ -389,10 +365,10 @@ std::map<std::int32_t, double> VolumeTargets(const LabelImage& image, const Defo
 }
 } // namespace
 
-Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
-  TetMesh& out, DeformationResult& result, const Progress& progress)
+Status DeformPoints(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
+  std::vector<Eigen::Vector3d>& x, DeformationResult& result, const Progress& progress)
 {
-  out = mesh;
+  x = mesh.Points;
   result = DeformationResult();
   result.Displacement.assign(mesh.Points.size(), Eigen::Vector3d::Zero());
   const Status valid = ValidateInputs(image, mesh, params);
@@ -445,17 +421,21 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
   {
     return Status::Aborted();
   }
-  Eigen::SparseMatrix<double> stiffness = AssembleStiffness(mesh, params.Materials,
+  BlockMatrix stiffness = AssembleStiffness(mesh, params.Materials,
     params.DefaultMaterial, threads, [&](double fraction) { return !stops.Stopped(0.07 + 0.03 * fraction); });
   if (stops.Stopped(0.1))
   {
     return Status::Aborted();
   }
-  std::vector<Eigen::Vector3d>& x = out.Points;
-  Registration registration(mesh, sources, matcher, fidelity, stiffness, params, bounds, NegligibleRigidMove(sources));
-  if (!RunIterations(registration, params.Iterations, sources.Points.size(), x, stops, result))
   {
-    return Status::Aborted();
+    // (In a scope of its own: the stiffness and the smoothing's lists are freed before the
+    // volumes build theirs, where the run's peak was.)
+    Registration registration(
+      mesh, sources, matcher, fidelity, std::move(stiffness), params, bounds, NegligibleRigidMove(sources));
+    if (!RunIterations(registration, params.Iterations, sources.Points.size(), x, stops, result))
+    {
+      return Status::Aborted();
+    }
   }
   if (params.KeepVolumes && result.Iterations > 0)
   {
@@ -486,5 +466,16 @@ Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const Deformatio
     result.StopReason = reason.str();
   }
   return Status::Ok();
+}
+
+Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
+  TetMesh& out, DeformationResult& result, const Progress& progress)
+{
+  std::vector<Eigen::Vector3d> moved;
+  const Status status = DeformPoints(image, mesh, params, moved, result, progress);
+  out.Points = std::move(moved);
+  out.Tets = mesh.Tets;
+  out.Labels = mesh.Labels;
+  return status;
 }
 } // namespace cbc3d

@@ -93,6 +93,10 @@ struct DeformationResult
 /// output never holds an inverted tet. Topology and labels are unchanged.
 Status DeformMesh(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
   TetMesh& out, DeformationResult& result, const Progress& progress = nullptr);
+
+/// DeformMesh's points alone, one per point of `mesh` (its tets and labels are not copied).
+Status DeformPoints(const LabelImage& image, const TetMesh& mesh, const DeformationParams& params,
+  std::vector<Eigen::Vector3d>& moved, DeformationResult& result, const Progress& progress = nullptr);
 } // namespace cbc3d
 
 #endif

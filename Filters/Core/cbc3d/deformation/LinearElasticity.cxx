@@ -58,14 +58,6 @@ Eigen::Matrix<double, 12, 12> TetStiffness(const TetMesh& mesh, const Tet& tet, 
 
 namespace
 {
-// Point p's neighbours (itself included), ascending, are Neighbours[RowStart[p]..RowStart[p+1]):
-// its 3x3 blocks in the matrix.
-struct BlockPattern
-{
-  std::vector<std::int64_t> RowStart;
-  std::vector<PointId> Neighbours;
-};
-
 // Point p's neighbours, itself included, each once, in `list` (unsorted). `seen` is the
 // thread's own, one entry per point: q is listed for p when seen[q] == p. (Each neighbour comes
 // from six tets or so: marking, not sorting all the tets' corners, finds each once.)
@@ -105,51 +97,24 @@ void ForEachNeighbourList(const TetMesh& mesh, const PointTets& around, int thre
   errors.Rethrow();
 }
 
-// Counted, then filled.
-BlockPattern FindBlockPattern(const TetMesh& mesh, const PointTets& around, int threads)
+// The blocks' pattern (point p's row holds a block for p and for every point sharing an edge
+// with it: counted, then filled, ascending) and zero values.
+void SetUpBlocks(const TetMesh& mesh, const PointTets& around, int threads, BlockMatrix& stiffness)
 {
   const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
-  BlockPattern pattern;
-  pattern.RowStart.assign(n + 1, 0);
+  stiffness.RowStart.assign(n + 1, 0);
   ForEachNeighbourList(mesh, around, threads, [&](std::int64_t p, std::vector<PointId>& list) {
-    pattern.RowStart[p + 1] = static_cast<std::int64_t>(list.size());
+    stiffness.RowStart[p + 1] = static_cast<std::int64_t>(list.size());
   });
   for (std::int64_t p = 0; p < n; ++p)
-    pattern.RowStart[p + 1] += pattern.RowStart[p];
-  pattern.Neighbours.resize(pattern.RowStart[n]);
+    stiffness.RowStart[p + 1] += stiffness.RowStart[p];
+  stiffness.Columns.resize(stiffness.Blocks());
+  stiffness.Values.resize(9 * stiffness.Blocks());
   ForEachNeighbourList(mesh, around, threads, [&](std::int64_t p, std::vector<PointId>& list) {
     std::sort(list.begin(), list.end());
-    std::copy(list.begin(), list.end(), pattern.Neighbours.begin() + pattern.RowStart[p]);
+    std::copy(list.begin(), list.end(), stiffness.Columns.begin() + stiffness.RowStart[p]);
+    std::fill(stiffness.Values.begin() + 9 * stiffness.RowStart[p], stiffness.Values.begin() + 9 * stiffness.RowStart[p + 1], 0.0);
   });
-  return pattern;
-}
-
-// Column-major storage of a symmetric matrix: column 3p+c lists the rows of p's blocks, zeros.
-// Written straight into the matrix's arrays: copying them in took most of a second.
-void SetUpColumns(const BlockPattern& pattern, int threads, Eigen::SparseMatrix<double>& stiffness)
-{
-  const std::int64_t n = static_cast<std::int64_t>(pattern.RowStart.size()) - 1;
-  const std::int64_t blocks = pattern.RowStart[n];
-  stiffness.resize(static_cast<int>(3 * n), static_cast<int>(3 * n));
-  stiffness.resizeNonZeros(static_cast<Eigen::Index>(9 * blocks));
-  int* outer = stiffness.outerIndexPtr();
-  int* inner = stiffness.innerIndexPtr();
-  double* values = stiffness.valuePtr();
-#pragma omp parallel for schedule(dynamic, 1024) num_threads(threads)
-  for (std::int64_t p = 0; p < n; ++p)
-  {
-    const std::int64_t first = pattern.RowStart[p], last = pattern.RowStart[p + 1];
-    std::fill(values + 9 * first, values + 9 * last, 0.0);
-    for (int c = 0; c < 3; ++c)
-    {
-      std::int64_t k = 9 * first + 3 * (last - first) * c;
-      outer[3 * p + c] = static_cast<int>(k);
-      for (std::int64_t q = first; q < last; ++q)
-        for (int r = 0; r < 3; ++r)
-          inner[k++] = static_cast<int>(3 * pattern.Neighbours[q] + r);
-    }
-  }
-  outer[3 * n] = static_cast<int>(9 * blocks);
 }
 
 // The points of tets begin..end-1, each once (`batchOf[p]`: the last batch p was listed for).
@@ -167,70 +132,60 @@ std::vector<PointId> PointsOfBatch(const TetMesh& mesh, std::int64_t begin, std:
   return points;
 }
 
-// Adds the matrices of tets begin..end-1 (local[t - begin]) into the columns of their points
+// Adds the matrices of tets begin..end-1 (local[t - begin]) into the blocks of their points
 // (`points`: only those, not every point of the mesh for every batch).
-// Each point's columns are written by one thread, its tets taken in ascending order
+// Each point's blocks are written by one thread, its tets taken in ascending order
 // (`next[p]`: p's first tet not added yet), so every sum runs in tet order, as a serial
 // loop over the tets would add it: the same matrix for any thread count.
-void AddTetMatrices(const TetMesh& mesh, const PointTets& around, const BlockPattern& pattern,
+void AddTetMatrices(const TetMesh& mesh, const PointTets& around,
   const std::vector<Eigen::Matrix<double, 12, 12>>& local, std::int64_t begin, std::int64_t end,
-  const std::vector<PointId>& points, std::vector<std::int64_t>& next, int threads,
-  Eigen::SparseMatrix<double>& stiffness)
+  const std::vector<PointId>& points, std::vector<std::int64_t>& next, int threads, BlockMatrix& stiffness)
 {
   const std::int64_t n = static_cast<std::int64_t>(points.size());
-  const int* outer = stiffness.outerIndexPtr();
-  double* values = stiffness.valuePtr();
 #pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
   for (std::int64_t i = 0; i < n; ++i)
   {
     const PointId p = points[i];
-    const auto first = pattern.Neighbours.begin() + pattern.RowStart[p];
-    const auto last = pattern.Neighbours.begin() + pattern.RowStart[p + 1];
+    const auto first = stiffness.Columns.begin() + stiffness.RowStart[p];
+    const auto last = stiffness.Columns.begin() + stiffness.RowStart[p + 1];
     for (; next[p] < around.Start[p + 1] && around.Tets[next[p]] < end; ++next[p])
     {
       const std::int64_t t = around.Tets[next[p]];
       const Tet& tet = mesh.Tets[t];
-      const int b = static_cast<int>(std::find(tet.begin(), tet.end(), p) - tet.begin()); // column point
-      for (int a = 0; a < 4; ++a) // row point
+      const int b = static_cast<int>(std::find(tet.begin(), tet.end(), p) - tet.begin()); // p's corner
+      for (int a = 0; a < 4; ++a) // the other point's corner
       {
-        const std::int64_t slot = std::lower_bound(first, last, tet[a]) - first;
+        const std::int64_t k = std::lower_bound(first, last, tet[a]) - stiffness.Columns.begin();
+        double* block = stiffness.Values.data() + 9 * k;
         for (int c = 0; c < 3; ++c)
-        {
-          double* column = values + outer[3 * p + c] + 3 * slot;
           for (int r = 0; r < 3; ++r)
-          {
-            column[r] += local[t - begin](3 * a + r, 3 * b + c);
-          }
-        }
+            block[3 * c + r] += local[t - begin](3 * a + r, 3 * b + c);
       }
     }
   }
 }
 } // namespace
 
-Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
+BlockMatrix AssembleStiffness(const TetMesh& mesh,
   const std::map<std::int32_t, Material>& materials, const Material& fallback, int numberOfThreads,
   const Progress& progress)
 {
-  // The pattern first: point p's row holds a 3x3 block for p and for every point sharing an
-  // edge with it. Then each tet adds its 12x12 matrix into those blocks. (Building it from
-  // 144 triplets per tet needed 16 bytes per triplet: 1.5 GB on a 650k-tet mesh.) That takes
-  // seconds on such a mesh: a stop request is looked for between the steps and the batches.
-  // Every return names this one matrix, so it is built in place (Eigen 3.4's sparse matrix has
-  // no move constructor: any other return would copy it).
-  Eigen::SparseMatrix<double> stiffness;
+  // The pattern first, then each tet adds its 12x12 matrix into its points' blocks. (Building
+  // it from 144 triplets per tet needed 16 bytes per triplet: 1.5 GB on a 650k-tet mesh.) That
+  // takes seconds on such a mesh: a stop request is looked for between the steps and the
+  // batches.
+  BlockMatrix stiffness;
   const int threads = ThreadCount(numberOfThreads);
   const PointTets around(mesh.Tets, mesh.Points.size());
   if (!KeepGoing(progress, 0.1))
   {
-    return stiffness;
+    return BlockMatrix();
   }
-  const BlockPattern pattern = FindBlockPattern(mesh, around, threads);
+  SetUpBlocks(mesh, around, threads, stiffness);
   if (!KeepGoing(progress, 0.2))
   {
-    return stiffness;
+    return BlockMatrix();
   }
-  SetUpColumns(pattern, threads, stiffness);
 
   // Tets in batches (their 12x12 matrices take 1152 bytes each), computed in parallel.
   const std::int64_t tetCount = static_cast<std::int64_t>(mesh.Tets.size());
@@ -242,7 +197,7 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
   {
     if (!KeepGoing(progress, 0.3 + 0.7 * double(begin) / double(tetCount)))
     {
-      return stiffness;
+      return BlockMatrix();
     }
     const std::int64_t end = std::min(tetCount, begin + batch);
 #pragma omp parallel for schedule(static) num_threads(threads)
@@ -252,7 +207,7 @@ Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
       local[t - begin] = TetStiffness(mesh, mesh.Tets[t], found == materials.end() ? fallback : found->second);
     }
     const std::vector<PointId> points = PointsOfBatch(mesh, begin, end, batchOf);
-    AddTetMatrices(mesh, around, pattern, local, begin, end, points, next, threads, stiffness);
+    AddTetMatrices(mesh, around, local, begin, end, points, next, threads, stiffness);
   }
   return stiffness;
 }

@@ -3,8 +3,7 @@
 
 #include "cbc3d/base/Progress.h"
 #include "cbc3d/base/TetMesh.h"
-
-#include <Eigen/SparseCore>
+#include "cbc3d/deformation/BlockMatrix.h"
 
 #include <cstdint>
 #include <map>
@@ -20,10 +19,10 @@ struct Material
 
 /// The stiffness matrix of linear elasticity on 4-node linear tets: 3 degrees of freedom per
 /// point (x, y, z of point p at 3p..3p+2), K = sum over tets of V B^T D B. Each tet's material
-/// is looked up by its label (`fallback` for labels not in `materials`). Assembled in parallel
-/// into pre-sized triplet slots, so the result does not depend on the thread count. Polls
+/// is looked up by its label (`fallback` for labels not in `materials`). Assembled in parallel,
+/// each block's sum in tet order, so the result does not depend on the thread count. Polls
 /// `progress` (on the calling thread) between its steps; a stop returns an empty matrix.
-Eigen::SparseMatrix<double> AssembleStiffness(const TetMesh& mesh,
+BlockMatrix AssembleStiffness(const TetMesh& mesh,
   const std::map<std::int32_t, Material>& materials, const Material& fallback, int numberOfThreads = 0,
   const Progress& progress = nullptr);
 } // namespace cbc3d
