@@ -46,6 +46,8 @@ FidelityGuard::FidelityGuard(const LabelImage& image, const TissueVoxels& bounda
     if (found != boundary.end())
     {
       Tissue tissue{ label, ids };
+      tissue.Counted.reserve(fixed.empty() ? 0 : ids.size());
+      tissue.Voxels.reserve(found->second.size()); // (grown one by one, they took up to twice)
       for (std::size_t v = 0; !fixed.empty() && v < ids.size(); ++v)
       {
         tissue.Counted.push_back(fixed[ids[v]] ? 0 : 1);

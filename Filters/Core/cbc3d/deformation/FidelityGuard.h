@@ -68,6 +68,7 @@ private:
   {
     Snapshot(const std::vector<PointId>& ids, const std::vector<Eigen::Vector3d>& points, double cell)
     {
+      this->Points.reserve(ids.size());
       for (const PointId v : ids)
       {
         this->Points.push_back(points[v]);
