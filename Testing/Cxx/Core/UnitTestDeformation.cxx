@@ -97,15 +97,17 @@ TEST(LinearElasticity, RigidMotionsCostNothingAndUniaxialStrainHasItsKnownEnergy
   cbc3d::Material material{ 3.0, 0.25 };
   const cbc3d::BlockMatrix k = cbc3d::AssembleStiffness(mesh, {}, material, 2);
   ASSERT_EQ(k.Size(), 24);
-  // Symmetric, and the product is the dense one's.
+  // Symmetric, and the product is the dense one's. (Entries off the diagonal are kept in single
+  // precision: the known answers hold to a few parts in 10^7.)
   const Eigen::MatrixXd dense = Dense(k);
-  EXPECT_LT((dense - dense.transpose()).norm(), 1e-12);
+  constexpr double single = 1e-6;
+  EXPECT_LT((dense - dense.transpose()).norm(), single * dense.norm());
   // A translation and an infinitesimal rotation: no force anywhere.
   const Eigen::VectorXd shift = Field(mesh, [](const Eigen::Vector3d&) { return Eigen::Vector3d(0.3, -1.0, 2.0); });
-  EXPECT_LT(Times(k, shift).norm(), 1e-12);
+  EXPECT_LT(Times(k, shift).norm(), single * dense.norm() * shift.norm());
   const Eigen::Vector3d axis(0.2, 0.5, -0.3);
   const Eigen::VectorXd spin = Field(mesh, [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(axis.cross(x)); });
-  EXPECT_LT(Times(k, spin).norm(), 1e-12);
+  EXPECT_LT(Times(k, spin).norm(), single * dense.norm() * spin.norm());
   // u = (e x, 0, 0): strain energy 1/2 u.K.u = 1/2 e^2 (lambda + 2 mu) V, with V = 8.
   const double e = 0.01;
   const Eigen::VectorXd stretch = Field(mesh, [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(e * x[0], 0, 0); });
@@ -113,10 +115,11 @@ TEST(LinearElasticity, RigidMotionsCostNothingAndUniaxialStrainHasItsKnownEnergy
   const double lambda = material.YoungModulus * material.PoissonRatio /
     ((1 + material.PoissonRatio) * (1 - 2 * material.PoissonRatio));
   const double mu = material.YoungModulus / (2 * (1 + material.PoissonRatio));
-  EXPECT_NEAR(0.5 * stretch.dot(Times(k, stretch)), 0.5 * e * e * (lambda + 2 * mu) * 8.0, 1e-12);
+  const double energy = 0.5 * e * e * (lambda + 2 * mu) * 8.0;
+  EXPECT_NEAR(0.5 * stretch.dot(Times(k, stretch)), energy, single * energy);
   // A stiffer tissue doubles its share.
   const cbc3d::BlockMatrix stiffer = cbc3d::AssembleStiffness(mesh, { { 1, { 6.0, 0.25 } } }, material, 1);
-  EXPECT_NEAR(stretch.dot(Times(stiffer, stretch)), 2.0 * stretch.dot(Times(k, stretch)), 1e-12);
+  EXPECT_NEAR(stretch.dot(Times(stiffer, stretch)), 2.0 * stretch.dot(Times(k, stretch)), single * energy);
 }
 
 TEST(LinearElasticity, ABlockOfSeveralBatchesIsTheSameForAnyThreadsAndKnowsItsEnergy)
@@ -137,13 +140,15 @@ TEST(LinearElasticity, ABlockOfSeveralBatchesIsTheSameForAnyThreadsAndKnowsItsEn
   EXPECT_TRUE(std::equal(serial.Values.begin(), serial.Values.end(), parallel.Values.begin()));
   EXPECT_TRUE(serial.Columns == parallel.Columns);
   const Eigen::VectorXd shift = Field(mesh, [](const Eigen::Vector3d&) { return Eigen::Vector3d(0.3, -1.0, 2.0); });
-  EXPECT_LT(Times(parallel, shift).norm(), 1e-9);
+  const double largest = *std::max_element(parallel.Diagonal.begin(), parallel.Diagonal.end());
+  EXPECT_LT(Times(parallel, shift).norm(), 1e-6 * largest * shift.norm()); // single precision
   const double e = 0.01;
   const Eigen::VectorXd stretch = Field(mesh, [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(e * x[0], 0, 0); });
   const double lambda = material.YoungModulus * material.PoissonRatio /
     ((1 + material.PoissonRatio) * (1 - 2 * material.PoissonRatio));
   const double mu = material.YoungModulus / (2 * (1 + material.PoissonRatio));
-  EXPECT_NEAR(0.5 * stretch.dot(Times(parallel, stretch)), 0.5 * e * e * (lambda + 2 * mu) * n * n * n, 1e-9);
+  const double energy = 0.5 * e * e * (lambda + 2 * mu) * n * n * n;
+  EXPECT_NEAR(0.5 * stretch.dot(Times(parallel, stretch)), energy, 1e-6 * energy);
   // The product sums each entry in one order: bit for bit the same on 1 and 3 threads, and
   // symmetric (u.Kv = v.Ku) to rounding.
   const Eigen::VectorXd wave = Field(mesh, [](const Eigen::Vector3d& x) {

@@ -19,25 +19,29 @@ void BlockMatrix::Multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y, int thr
     double sum[3] = { 0.0, 0.0, 0.0 };
     for (std::int64_t k = this->RowStart[p]; k < this->RowStart[p + 1]; ++k)
     {
-      const double* block = this->Values.data() + 9 * k;
+      const float* block = this->Values.data() + 9 * k;
       const double* near = in + 3 * std::int64_t(this->Columns[k]);
       for (int c = 0; c < 3; ++c)
       {
         for (int r = 0; r < 3; ++r)
         {
-          sum[c] += block[3 * c + r] * near[r];
+          sum[c] += double(block[3 * c + r]) * near[r];
         }
       }
     }
     for (int c = 0; c < 3; ++c)
     {
-      out[3 * p + c] = sum[c];
+      out[3 * p + c] = sum[c] + this->Diagonal[3 * p + c] * in[3 * p + c];
     }
   }
 }
 
 double BlockMatrix::Coefficient(Eigen::Index row, Eigen::Index column) const
 {
+  if (row == column)
+  {
+    return this->Diagonal[row];
+  }
   const std::int64_t p = row / 3, q = column / 3;
   const auto first = this->Columns.begin() + this->RowStart[p];
   const auto last = this->Columns.begin() + this->RowStart[p + 1];
@@ -48,21 +52,5 @@ double BlockMatrix::Coefficient(Eigen::Index row, Eigen::Index column) const
   }
   const std::int64_t k = found - this->Columns.begin();
   return this->Values[9 * k + 3 * (row % 3) + column % 3];
-}
-
-std::vector<double*> BlockMatrix::DiagonalEntries()
-{
-  std::vector<double*> diagonal(static_cast<std::size_t>(this->Size()));
-  for (std::size_t p = 0; p < this->Points(); ++p)
-  {
-    const auto first = this->Columns.begin() + this->RowStart[p];
-    const auto last = this->Columns.begin() + this->RowStart[p + 1];
-    const std::int64_t k = std::lower_bound(first, last, std::int32_t(p)) - this->Columns.begin();
-    for (int c = 0; c < 3; ++c)
-    {
-      diagonal[3 * p + c] = this->Values.data() + 9 * k + 4 * c;
-    }
-  }
-  return diagonal;
 }
 } // namespace cbc3d

@@ -42,7 +42,6 @@ private:
   bool Iterate(const Eigen::VectorXd& loads, int iterations, int threads);
 
   BlockMatrix System;                  // the stiffness, its diagonal with the last springs added
-  std::vector<double*> Diagonal;       // System's diagonal entries
   std::vector<double> StiffnessDiagonal;
   Eigen::VectorXd InverseDiagonal;     // the preconditioner
   Eigen::VectorXd Du;                  // the last step (the next solve starts from it)

@@ -12,52 +12,32 @@ namespace cbc3d
 {
 namespace
 {
-Eigen::Matrix<double, 6, 6> Elasticity(const Material& m)
+// Lamé's constants of an isotropic material.
+struct Lame
 {
-  const double e = m.YoungModulus;
-  const double nu = m.PoissonRatio;
-  const double scale = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
-  Eigen::Matrix<double, 6, 6> d = Eigen::Matrix<double, 6, 6>::Zero();
-  d.topLeftCorner<3, 3>().setConstant(nu);
-  d.topLeftCorner<3, 3>().diagonal().setConstant(1.0 - nu);
-  d.bottomRightCorner<3, 3>().diagonal().setConstant(0.5 - nu);
-  return scale * d;
-}
-// V B^T D B of one 4-node tet, rows and columns in (point, axis) order.
-Eigen::Matrix<double, 12, 12> TetStiffness(const TetMesh& mesh, const Tet& tet, const Material& material)
+  double Lambda, Mu;
+  explicit Lame(const Material& m)
+    : Lambda(m.YoungModulus * m.PoissonRatio / ((1.0 + m.PoissonRatio) * (1.0 - 2.0 * m.PoissonRatio)))
+    , Mu(m.YoungModulus / (2.0 * (1.0 + m.PoissonRatio)))
+  {
+  }
+};
+
+// The gradients of a tet's four shape functions (its rows), and its volume.
+double ShapeGradients(const TetMesh& mesh, const Tet& tet, Eigen::Matrix<double, 4, 3>& gradient)
 {
-  const Eigen::Matrix<double, 6, 6> d = Elasticity(material);
   Eigen::Matrix3d edges;
   for (int v = 0; v < 3; ++v)
   {
     edges.col(v) = mesh.Points[tet[v + 1]] - mesh.Points[tet[0]];
   }
-  const double volume = edges.determinant() / 6.0;
-  // Gradients of the shape functions: rows of the inverse edge matrix; N0's is minus their sum.
+  // Rows of the inverse edge matrix; N0's is minus their sum.
   const Eigen::Matrix3d inverse = edges.inverse();
-  Eigen::Matrix<double, 4, 3> gradient;
   gradient.bottomRows<3>() = inverse;
   gradient.row(0) = -inverse.colwise().sum();
-  Eigen::Matrix<double, 6, 12> b = Eigen::Matrix<double, 6, 12>::Zero();
-  for (int v = 0; v < 4; ++v)
-  {
-    const double gx = gradient(v, 0), gy = gradient(v, 1), gz = gradient(v, 2);
-    b(0, 3 * v) = gx;
-    b(1, 3 * v + 1) = gy;
-    b(2, 3 * v + 2) = gz;
-    b(3, 3 * v) = gy; // engineering shear strains xy, yz, zx
-    b(3, 3 * v + 1) = gx;
-    b(4, 3 * v + 1) = gz;
-    b(4, 3 * v + 2) = gy;
-    b(5, 3 * v) = gz;
-    b(5, 3 * v + 2) = gx;
-  }
-  return std::abs(volume) * b.transpose() * d * b;
+  return std::abs(edges.determinant()) / 6.0;
 }
-} // namespace
 
-namespace
-{
 // Point p's neighbours, itself included, each once, in `list` (unsorted). `seen` is the
 // thread's own, one entry per point: q is listed for p when seen[q] == p. (Each neighbour comes
 // from six tets or so: marking, not sorting all the tets' corners, finds each once.)
@@ -75,10 +55,11 @@ void ListNeighbours(const TetMesh& mesh, const PointTets& around, std::int64_t p
       }
 }
 
-// Calls visit(p, list) for every point p, on the threads, with `list` its neighbours
-// (ListNeighbours; the visit may reorder them).
+// Calls visit(p, list) for every point p in [begin, end), on the threads, with `list` its
+// neighbours (ListNeighbours; the visit may reorder them).
 template <typename Visit>
-void ForEachNeighbourList(const TetMesh& mesh, const PointTets& around, int threads, const Visit& visit)
+void ForEachNeighbourList(const TetMesh& mesh, const PointTets& around, std::int64_t begin, std::int64_t end,
+  int threads, const Visit& visit)
 {
   const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
   RegionErrors errors;
@@ -88,7 +69,7 @@ void ForEachNeighbourList(const TetMesh& mesh, const PointTets& around, int thre
     std::vector<PointId> list;
     errors.Run([&] { seen.assign(n, -1); }); // every thread meets the loop below, failed or not
 #pragma omp for schedule(dynamic, 1024)
-    for (std::int64_t p = 0; p < n; ++p)
+    for (std::int64_t p = begin; p < end; ++p)
       errors.Run([&] {
           ListNeighbours(mesh, around, p, seen, list);
           visit(p, list);
@@ -97,72 +78,44 @@ void ForEachNeighbourList(const TetMesh& mesh, const PointTets& around, int thre
   errors.Rethrow();
 }
 
-// The blocks' pattern (point p's row holds a block for p and for every point sharing an edge
-// with it: counted, then filled, ascending) and zero values.
-void SetUpBlocks(const TetMesh& mesh, const PointTets& around, int threads, BlockMatrix& stiffness)
+// Point p's row: K(3p + c, 3q + r) = sum over the tets around p (in ascending order) of
+// V (lambda g_p,c g_q,r + mu g_p,r g_q,c + mu [c = r] g_p . g_q), the gradients g of the tet's
+// shape functions at p's corner and q's: the blocks of V B^T D B for linear tets, summed in
+// double and stored as BlockMatrix keeps them.
+void AssembleRow(const TetMesh& mesh, const PointTets& around, std::int64_t p,
+  const std::map<std::int32_t, Material>& materials, const Material& fallback, std::vector<double>& sums,
+  BlockMatrix& stiffness)
 {
-  const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
-  stiffness.RowStart.assign(n + 1, 0);
-  ForEachNeighbourList(mesh, around, threads, [&](std::int64_t p, std::vector<PointId>& list) {
-    stiffness.RowStart[p + 1] = static_cast<std::int64_t>(list.size());
-  });
-  for (std::int64_t p = 0; p < n; ++p)
-    stiffness.RowStart[p + 1] += stiffness.RowStart[p];
-  stiffness.Columns.resize(stiffness.Blocks());
-  stiffness.Values.resize(9 * stiffness.Blocks());
-  ForEachNeighbourList(mesh, around, threads, [&](std::int64_t p, std::vector<PointId>& list) {
-    std::sort(list.begin(), list.end());
-    std::copy(list.begin(), list.end(), stiffness.Columns.begin() + stiffness.RowStart[p]);
-    std::fill(stiffness.Values.begin() + 9 * stiffness.RowStart[p], stiffness.Values.begin() + 9 * stiffness.RowStart[p + 1], 0.0);
-  });
-}
-
-// The points of tets begin..end-1, each once (`batchOf[p]`: the last batch p was listed for).
-std::vector<PointId> PointsOfBatch(const TetMesh& mesh, std::int64_t begin, std::int64_t end,
-  std::vector<std::int64_t>& batchOf)
-{
-  std::vector<PointId> points;
-  for (std::int64_t t = begin; t < end; ++t)
-    for (const PointId p : mesh.Tets[t])
-      if (batchOf[p] != begin)
-      {
-        batchOf[p] = begin;
-        points.push_back(p);
-      }
-  return points;
-}
-
-// Adds the matrices of tets begin..end-1 (local[t - begin]) into the blocks of their points
-// (`points`: only those, not every point of the mesh for every batch).
-// Each point's blocks are written by one thread, its tets taken in ascending order
-// (`next[p]`: p's first tet not added yet), so every sum runs in tet order, as a serial
-// loop over the tets would add it: the same matrix for any thread count.
-void AddTetMatrices(const TetMesh& mesh, const PointTets& around,
-  const std::vector<Eigen::Matrix<double, 12, 12>>& local, std::int64_t begin, std::int64_t end,
-  const std::vector<PointId>& points, std::vector<std::int64_t>& next, int threads, BlockMatrix& stiffness)
-{
-  const std::int64_t n = static_cast<std::int64_t>(points.size());
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
-  for (std::int64_t i = 0; i < n; ++i)
+  const std::int64_t first = stiffness.RowStart[p], count = stiffness.RowStart[p + 1] - first;
+  const std::int32_t* columns = stiffness.Columns.data() + first;
+  sums.assign(9 * count, 0.0);
+  Eigen::Matrix<double, 4, 3> g;
+  for (std::int64_t i = around.Start[p]; i < around.Start[p + 1]; ++i)
   {
-    const PointId p = points[i];
-    const auto first = stiffness.Columns.begin() + stiffness.RowStart[p];
-    const auto last = stiffness.Columns.begin() + stiffness.RowStart[p + 1];
-    for (; next[p] < around.Start[p + 1] && around.Tets[next[p]] < end; ++next[p])
+    const Tet& tet = mesh.Tets[around.Tets[i]];
+    const auto found = materials.find(mesh.Labels[around.Tets[i]]);
+    const Lame lame(found == materials.end() ? fallback : found->second);
+    const double volume = ShapeGradients(mesh, tet, g);
+    const int b = static_cast<int>(std::find(tet.begin(), tet.end(), p) - tet.begin()); // p's corner
+    for (int a = 0; a < 4; ++a)
     {
-      const std::int64_t t = around.Tets[next[p]];
-      const Tet& tet = mesh.Tets[t];
-      const int b = static_cast<int>(std::find(tet.begin(), tet.end(), p) - tet.begin()); // p's corner
-      for (int a = 0; a < 4; ++a) // the other point's corner
-      {
-        const std::int64_t k = std::lower_bound(first, last, tet[a]) - stiffness.Columns.begin();
-        double* block = stiffness.Values.data() + 9 * k;
-        for (int c = 0; c < 3; ++c)
-          for (int r = 0; r < 3; ++r)
-            block[3 * c + r] += local[t - begin](3 * a + r, 3 * b + c);
-      }
+      double* block = sums.data() + 9 * (std::lower_bound(columns, columns + count, tet[a]) - columns);
+      const double dot = g.row(a).dot(g.row(b));
+      for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r)
+          block[3 * c + r] += volume * (lame.Lambda * g(b, c) * g(a, r) + lame.Mu * g(b, r) * g(a, c) +
+            (c == r ? lame.Mu * dot : 0.0));
     }
   }
+  for (std::int64_t k = 0; k < count; ++k)
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r)
+      {
+        const bool diagonal = columns[k] == p && c == r;
+        stiffness.Values[9 * (first + k) + 3 * c + r] = diagonal ? 0.0f : static_cast<float>(sums[9 * k + 3 * c + r]);
+        if (diagonal)
+          stiffness.Diagonal[3 * p + c] = sums[9 * k + 3 * c + r];
+      }
 }
 } // namespace
 
@@ -170,44 +123,37 @@ BlockMatrix AssembleStiffness(const TetMesh& mesh,
   const std::map<std::int32_t, Material>& materials, const Material& fallback, int numberOfThreads,
   const Progress& progress)
 {
-  // The pattern first, then each tet adds its 12x12 matrix into its points' blocks. (Building
-  // it from 144 triplets per tet needed 16 bytes per triplet: 1.5 GB on a 650k-tet mesh.) That
-  // takes seconds on such a mesh: a stop request is looked for between the steps and the
-  // batches.
-  BlockMatrix stiffness;
+  // The pattern first (point p's row holds a block for p and for every point sharing an edge
+  // with it: counted), then each row from its tets, in chunks of points: that takes seconds on
+  // large meshes, and a stop request is looked for between the chunks. (Building the matrix
+  // from 144 triplets per tet needed 16 bytes per triplet: 1.5 GB on a 650k-tet mesh.)
   const int threads = ThreadCount(numberOfThreads);
   const PointTets around(mesh.Tets, mesh.Points.size());
-  if (!KeepGoing(progress, 0.1))
+  const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
+  BlockMatrix stiffness;
+  stiffness.RowStart.assign(n + 1, 0);
+  ForEachNeighbourList(mesh, around, 0, n, threads, [&](std::int64_t p, std::vector<PointId>& list) {
+    stiffness.RowStart[p + 1] = static_cast<std::int64_t>(list.size());
+  });
+  for (std::int64_t p = 0; p < n; ++p)
+    stiffness.RowStart[p + 1] += stiffness.RowStart[p];
+  stiffness.Columns.resize(stiffness.Blocks());
+  stiffness.Values.resize(9 * stiffness.Blocks());
+  stiffness.Diagonal.resize(3 * n);
+  const std::int64_t chunk = std::max<std::int64_t>(65536, n / 16);
+  for (std::int64_t begin = 0; begin < n; begin += chunk)
   {
-    return BlockMatrix();
-  }
-  SetUpBlocks(mesh, around, threads, stiffness);
-  if (!KeepGoing(progress, 0.2))
-  {
-    return BlockMatrix();
-  }
-
-  // Tets in batches (their 12x12 matrices take 1152 bytes each), computed in parallel.
-  const std::int64_t tetCount = static_cast<std::int64_t>(mesh.Tets.size());
-  constexpr std::int64_t batch = 4096;
-  std::vector<Eigen::Matrix<double, 12, 12>> local(static_cast<std::size_t>(std::min(batch, tetCount)));
-  std::vector<std::int64_t> next(around.Start.begin(), around.Start.end() - 1);
-  std::vector<std::int64_t> batchOf(mesh.Points.size(), -1);
-  for (std::int64_t begin = 0; begin < tetCount; begin += batch)
-  {
-    if (!KeepGoing(progress, 0.3 + 0.7 * double(begin) / double(tetCount)))
+    if (!KeepGoing(progress, 0.1 + 0.9 * double(begin) / double(n)))
     {
       return BlockMatrix();
     }
-    const std::int64_t end = std::min(tetCount, begin + batch);
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (std::int64_t t = begin; t < end; ++t)
-    {
-      const auto found = materials.find(mesh.Labels[t]);
-      local[t - begin] = TetStiffness(mesh, mesh.Tets[t], found == materials.end() ? fallback : found->second);
-    }
-    const std::vector<PointId> points = PointsOfBatch(mesh, begin, end, batchOf);
-    AddTetMatrices(mesh, around, local, begin, end, points, next, threads, stiffness);
+    ForEachNeighbourList(mesh, around, begin, std::min(n, begin + chunk), threads,
+      [&](std::int64_t p, std::vector<PointId>& list) {
+        thread_local std::vector<double> sums; // the row's blocks, summed in double
+        std::sort(list.begin(), list.end());
+        std::copy(list.begin(), list.end(), stiffness.Columns.begin() + stiffness.RowStart[p]);
+        AssembleRow(mesh, around, p, materials, fallback, sums, stiffness);
+      });
   }
   return stiffness;
 }
