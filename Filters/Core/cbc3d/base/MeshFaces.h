@@ -29,6 +29,11 @@ std::vector<MeshFace> FindMeshFaces(const std::vector<Tet>& tets, std::size_t po
 std::vector<MeshFace> SelectMeshFaces(const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads,
   const std::function<bool(const MeshFace&)>& keep);
 
+/// SelectMeshFaces over the tets in `subset` alone (ids in `tets`, ascending): a face is theirs
+/// when one of them uses it, and names those tets by their ids in `tets`.
+std::vector<MeshFace> SelectMeshFaces(const std::vector<Tet>& tets, const std::vector<std::int32_t>& subset,
+  std::size_t pointCount, int numberOfThreads, const std::function<bool(const MeshFace&)>& keep);
+
 /// The faces of a labelled mesh that bound a label: on the mesh boundary, between two labels,
 /// or (a mesh that does not conform) shared by more than two tets; in FindMeshFaces' order.
 /// Most faces are inside a tissue: those who want the surfaces alone need not hold them.

@@ -37,36 +37,36 @@ std::map<std::int32_t, std::vector<BoundaryCoverage::Face>> BoundaryCoverage::He
   std::size_t pointCount, const std::vector<Tet>& tets, const std::vector<std::int32_t>& labels) const
 {
   // Only the held tissues' tets are searched (a face they share with any other tet is one of
-  // theirs alone there), in their order, so the faces come in the same order as over the whole mesh.
-  std::vector<Tet> tissueTets;
-  std::vector<std::int64_t> tetOf;
-  tissueTets.reserve(tets.size());
-  tetOf.reserve(tets.size());
-  std::int32_t lastLabel = labels.empty() ? 0 : labels[0];
-  bool lastTracked = !labels.empty() && this->Tissues.count(lastLabel) > 0;
-  for (std::size_t t = 0; t < tets.size(); ++t)
-  {
-    if (labels[t] != lastLabel) // neighbouring tets mostly share a label: one lookup per change
+  // theirs alone there), by their ids (not a copy of their corners), so the faces come in the
+  // same order as over the whole mesh.
+  const auto forEachHeldTet = [&](const auto& take) {
+    std::int32_t lastLabel = 0;
+    bool lastTracked = false;
+    for (std::size_t t = 0; t < tets.size(); ++t)
     {
-      lastLabel = labels[t];
-      lastTracked = this->Tissues.count(lastLabel) > 0;
+      if (t == 0 || labels[t] != lastLabel) // neighbouring tets mostly share a label
+      {
+        lastLabel = labels[t];
+        lastTracked = this->Tissues.count(lastLabel) > 0;
+      }
+      if (lastTracked)
+        take(t);
     }
-    if (lastTracked)
-    {
-      tissueTets.push_back(tets[t]);
-      tetOf.push_back(static_cast<std::int64_t>(t));
-    }
-  }
+  };
+  std::size_t count = 0; // counted first: the list is the run's largest while it lives
+  forEachHeldTet([&](std::size_t) { ++count; });
+  std::vector<std::int32_t> subset;
+  subset.reserve(count);
+  forEachHeldTet([&](std::size_t t) { subset.push_back(static_cast<std::int32_t>(t)); });
   const auto bounding = [&](const MeshFace& face) {
-    return face.TetCount != 2 || labels[tetOf[face.Tets[0]]] != labels[tetOf[face.Tets[1]]];
+    return face.TetCount != 2 || labels[face.Tets[0]] != labels[face.Tets[1]];
   };
   std::map<std::int32_t, std::vector<Face>> surfaces;
-  for (const MeshFace& face : SelectMeshFaces(tissueTets, pointCount, this->Threads, bounding))
+  for (const MeshFace& face : SelectMeshFaces(tets, subset, pointCount, this->Threads, bounding))
   {
     for (int side = 0; side < std::min(face.TetCount, 2); ++side)
     {
-      const std::int64_t tet = tetOf[face.Tets[side]];
-      surfaces[labels[tet]].push_back({ face.Points, tet });
+      surfaces[labels[face.Tets[side]]].push_back({ face.Points, face.Tets[side] });
     }
   }
   return surfaces;
