@@ -142,3 +142,68 @@ TEST(MeshFaces, PointsWithoutTetsHaveNoFaces)
   EXPECT_TRUE(cbc3d::SelectMeshFaces(none, 5, 2, [](const cbc3d::MeshFace&) { return true; }).empty());
   EXPECT_TRUE(cbc3d::FaceNeighbours(none, 5, 2).empty());
 }
+
+TEST(MeshFaces, FaceNeighboursAreTheTetsSharingEachFaceOrNoneWhereThreeDo)
+{
+  // A grid of 6 x 5 x 4 Kuhn cubes, against a search of every pair of tets.
+  const cbc3d::TetMesh mesh = cbc3d::testing::KuhnGrid(
+    6, 5, 4, [](int, int, int) { return true; }, [](int, int, int, int) { return 1; });
+  const auto shares = [](const cbc3d::Tet& tet, const cbc3d::Tet& other, int opposite) {
+    for (int j = 0; j < 4; ++j)
+      if (j != opposite && std::find(other.begin(), other.end(), tet[j]) == other.end())
+        return false;
+    return true;
+  };
+  for (const int threads : { 1, 3 })
+  {
+    const auto across = cbc3d::FaceNeighbours(mesh.Tets, mesh.Points.size(), threads);
+    ASSERT_EQ(across.size(), mesh.Tets.size());
+    std::size_t boundary = 0;
+    for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+      for (int i = 0; i < 4; ++i)
+      {
+        std::int64_t expected = -1;
+        for (std::size_t u = 0; u < mesh.Tets.size(); ++u)
+          if (u != t && shares(mesh.Tets[t], mesh.Tets[u], i))
+            expected = static_cast<std::int64_t>(u);
+        EXPECT_EQ(across[t][i], expected) << "tet " << t << " face " << i;
+        boundary += expected < 0 ? 1 : 0;
+      }
+    EXPECT_EQ(boundary, 2u * (6 * 5 + 5 * 4 + 6 * 4) * 2); // two triangles a boundary square
+  }
+  // Three tets on one face: it has no neighbour across for any of them.
+  const std::vector<cbc3d::Tet> fan = { { 0, 1, 2, 3 }, { 0, 1, 2, 4 }, { 0, 1, 2, 5 } };
+  const auto across = cbc3d::FaceNeighbours(fan, 6, 2);
+  for (const auto& faces : across)
+    EXPECT_EQ(faces[3], -1);
+}
+
+TEST(MeshFaces, SelectingOverASubsetGivesTheFacesOfThoseTetsByTheirIds)
+{
+  const cbc3d::TetMesh mesh = cbc3d::testing::KuhnGrid(
+    5, 4, 3, [](int, int, int) { return true; }, [](int i, int, int, int) { return i < 2 ? 1 : 2; });
+  std::vector<std::int32_t> subset;
+  std::vector<cbc3d::Tet> copied;
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+    if (mesh.Labels[t] == 2)
+    {
+      subset.push_back(static_cast<std::int32_t>(t));
+      copied.push_back(mesh.Tets[t]);
+    }
+  ASSERT_GT(subset.size(), 0u);
+  ASSERT_LT(subset.size(), mesh.Tets.size());
+  const auto every = [](const cbc3d::MeshFace&) { return true; };
+  const auto expected = cbc3d::SelectMeshFaces(copied, mesh.Points.size(), 1, every);
+  for (const int threads : { 1, 3 })
+  {
+    const auto selected = cbc3d::SelectMeshFaces(mesh.Tets, subset, mesh.Points.size(), threads, every);
+    ASSERT_EQ(selected.size(), expected.size());
+    for (std::size_t f = 0; f < selected.size(); ++f)
+    {
+      EXPECT_EQ(selected[f].Points, expected[f].Points);
+      EXPECT_EQ(selected[f].TetCount, expected[f].TetCount);
+      for (int side = 0; side < expected[f].TetCount; ++side)
+        EXPECT_EQ(selected[f].Tets[side], subset[expected[f].Tets[side]]);
+    }
+  }
+}
