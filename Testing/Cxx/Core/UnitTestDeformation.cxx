@@ -506,20 +506,3 @@ TEST(Deformation, FixedPointsKeepTheirPlacesAndVolumeOffsetsMoveTheTarget)
   std::printf("ball volume / voxels with a -2%% offset: %.4f\n", share);
   EXPECT_NEAR(share, 0.98, 0.005);
 }
-
-// The elastic solve's sparse products thread by Eigen's own count, all cores unless set: a
-// scope sets the asked count and gives the one before back, nested too.
-TEST(Parallel, EigenUsesTheAskedThreadsWhileAScopeLives)
-{
-  const int before = Eigen::nbThreads();
-  {
-    const cbc3d::ScopedEigenThreads one(1);
-    EXPECT_EQ(Eigen::nbThreads(), 1);
-    {
-      const cbc3d::ScopedEigenThreads three(3);
-      EXPECT_EQ(Eigen::nbThreads(), 3);
-    }
-    EXPECT_EQ(Eigen::nbThreads(), 1);
-  }
-  EXPECT_EQ(Eigen::nbThreads(), before);
-}

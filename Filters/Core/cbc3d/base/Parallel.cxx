@@ -1,7 +1,5 @@
 #include "cbc3d/base/Parallel.h"
 
-#include <Eigen/Core>
-
 #include <omp.h>
 
 #include <algorithm>
@@ -17,17 +15,6 @@ namespace cbc3d
 int ThreadCount(int requested)
 {
   return requested > 0 ? std::min(requested, MaximumThreads) : omp_get_max_threads();
-}
-
-ScopedEigenThreads::ScopedEigenThreads(int requested)
-  : Previous(Eigen::nbThreads())
-{
-  Eigen::setNbThreads(ThreadCount(requested));
-}
-
-ScopedEigenThreads::~ScopedEigenThreads()
-{
-  Eigen::setNbThreads(this->Previous);
 }
 
 namespace

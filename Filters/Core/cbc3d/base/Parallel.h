@@ -16,21 +16,6 @@ int ThreadCount(int requested);
 /// their stacks), so that the caller can say so.
 bool StartThreads(int requested);
 
-/// Eigen threads its sparse products by Eigen::nbThreads(), all cores unless set, whatever the
-/// caller asked (a 1-thread run used 2 in the elastic solve): while one of these lives, Eigen
-/// uses ThreadCount(requested); the count before comes back after.
-class ScopedEigenThreads
-{
-public:
-  explicit ScopedEigenThreads(int requested);
-  ~ScopedEigenThreads();
-  ScopedEigenThreads(const ScopedEigenThreads&) = delete;
-  ScopedEigenThreads& operator=(const ScopedEigenThreads&) = delete;
-
-private:
-  const int Previous;
-};
-
 /// The calling thread's id inside a parallel region (0 outside one).
 int ThreadId();
 
