@@ -12,7 +12,6 @@ case and tissue with both figures, then the verdict; exits 1 when a figure fails
 the 1 mm New York Head (a minute or more a run).
 """
 import argparse
-import gzip
 import json
 import os
 import struct
@@ -20,21 +19,20 @@ import subprocess
 import sys
 import tempfile
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SHARED = os.path.normpath(os.path.join(HERE, "..", "..", "..", "shared", "data"))
-PAPER = ["--bcc-size", "8", "--fidelity", "0.95", "--pattern", "edge", "--iterations", "5"]
-# Each shared image with the label that is not tissue (the k-means head's air is 1).
-IMAGES = [("cbc3d-brain.nii.gz", 0), ("cbc3d-nidus.nii.gz", 0), ("cbc3d-ventricles.nii.gz", 0),
-          ("nipype-tissue-labels.nii.gz", 0), ("itk-t1-kmeans-labels.nii.gz", 1)]
-HEADS = [("nyhead-6tissue-1mm.nii.gz", 0)]
+import benchmark_meshing as meshing
+
+# The paper's settings (the iterations are the default 5) and the shared images with the label
+# that is not tissue, as the benchmark meshes them.
+PAPER = meshing.PAPER_SETTINGS
+IMAGES = meshing.IMAGES
+HEADS = meshing.CURVE_HEADS
 
 
 def voxel_spacing(path):
-    """The NIfTI-1 header's pixdim[1..3]."""
-    with (gzip.open if path.endswith(".gz") else open)(path, "rb") as f:
-        header = f.read(348)
-    order = "<" if struct.unpack("<i", header[:4])[0] == 348 else ">"
-    return struct.unpack(order + "3f", header[80:92])
+    """The NIfTI header's pixdim[1..3]."""
+    with meshing.open_nifti(path) as stream:
+        header, order = meshing.read_nifti_header(stream)
+    return struct.unpack_from(order + "3f", header, 80)
 
 
 def report(cli, image, options, work):
@@ -86,8 +84,8 @@ def main():
     parser.add_argument("--heads", action="store_true", help="also the 1 mm New York Head")
     parser.add_argument("--images", nargs="+", metavar="NAME", help="only images whose name holds one of these")
     options = parser.parse_args()
-    if not os.path.isdir(SHARED):
-        print("judge_change: %s is absent: nothing to judge" % SHARED)
+    if not os.path.isdir(meshing.SHARED):
+        print("judge_change: %s is absent: nothing to judge" % os.path.normpath(meshing.SHARED))
         return 0
     images = IMAGES + (HEADS if options.heads else [])
     if options.images:
@@ -95,7 +93,7 @@ def main():
     failures = []
     with tempfile.TemporaryDirectory() as work:
         for image, background in images:
-            path = os.path.join(SHARED, image)
+            path = os.path.join(meshing.SHARED, image)
             spacing = voxel_spacing(path)
             for setting, extra in (("paper", PAPER), ("defaults", [])):
                 run = extra + ["--background", str(background)]

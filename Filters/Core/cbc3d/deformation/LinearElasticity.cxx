@@ -56,22 +56,27 @@ void ListNeighbours(const TetMesh& mesh, const PointTets& around, std::int64_t p
 }
 
 // Calls visit(p, list) for every point p in [begin, end), on the threads, with `list` its
-// neighbours (ListNeighbours; the visit may reorder them).
+// neighbours (ListNeighbours; the visit may reorder them). `seen` holds each thread's marks
+// (filled on first use): calls that visit no point twice may share them, so the chunks of one
+// pass mark a point's array once, not once a chunk.
 template <typename Visit>
 void ForEachNeighbourList(const TetMesh& mesh, const PointTets& around, std::int64_t begin, std::int64_t end,
-  int threads, const Visit& visit)
+  int threads, std::vector<std::vector<std::int64_t>>& seen, const Visit& visit)
 {
   const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
   RegionErrors errors;
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<std::int64_t> seen;
+    std::vector<std::int64_t>& marks = seen[ThreadId()];
     std::vector<PointId> list;
-    errors.Run([&] { seen.assign(n, -1); }); // every thread meets the loop below, failed or not
+    errors.Run([&] {
+      if (marks.empty())
+        marks.assign(n, -1);
+    }); // every thread meets the loop below, failed or not
 #pragma omp for schedule(dynamic, 1024)
     for (std::int64_t p = begin; p < end; ++p)
       errors.Run([&] {
-          ListNeighbours(mesh, around, p, seen, list);
+          ListNeighbours(mesh, around, p, marks, list);
           visit(p, list);
         });
   }
@@ -132,7 +137,8 @@ BlockMatrix AssembleStiffness(const TetMesh& mesh,
   const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
   BlockMatrix stiffness;
   stiffness.RowStart.assign(n + 1, 0);
-  ForEachNeighbourList(mesh, around, 0, n, threads, [&](std::int64_t p, std::vector<PointId>& list) {
+  std::vector<std::vector<std::int64_t>> seen(threads);
+  ForEachNeighbourList(mesh, around, 0, n, threads, seen, [&](std::int64_t p, std::vector<PointId>& list) {
     stiffness.RowStart[p + 1] = static_cast<std::int64_t>(list.size());
   });
   for (std::int64_t p = 0; p < n; ++p)
@@ -140,6 +146,8 @@ BlockMatrix AssembleStiffness(const TetMesh& mesh,
   stiffness.Columns.resize(stiffness.Blocks());
   stiffness.Values.resize(9 * stiffness.Blocks());
   stiffness.Diagonal.resize(3 * n);
+  for (std::vector<std::int64_t>& marks : seen)
+    marks.clear(); // the rows' pass visits every point again
   const std::int64_t chunk = std::max<std::int64_t>(65536, n / 16);
   for (std::int64_t begin = 0; begin < n; begin += chunk)
   {
@@ -147,7 +155,7 @@ BlockMatrix AssembleStiffness(const TetMesh& mesh,
     {
       return BlockMatrix();
     }
-    ForEachNeighbourList(mesh, around, begin, std::min(n, begin + chunk), threads,
+    ForEachNeighbourList(mesh, around, begin, std::min(n, begin + chunk), threads, seen,
       [&](std::int64_t p, std::vector<PointId>& list) {
         thread_local std::vector<double> sums; // the row's blocks, summed in double
         std::sort(list.begin(), list.end());
