@@ -21,64 +21,101 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
+#include <vector>
+
+namespace
+{
+// The tets bound for one rank, each corner once.
+struct Outgoing
+{
+  std::unordered_map<vtkIdType, vtkTypeInt64> Index;
+  std::vector<vtkTypeInt64> Ids, Keys, Corners, Labels;
+  std::vector<double> Places;
+
+  void Add(vtkUnstructuredGrid* owned, vtkDataArray* ids, const std::vector<std::int64_t>& axisKeys,
+    vtkIdList* corners, vtkTypeInt64 label)
+  {
+    for (const vtkIdType p : *corners)
+    {
+      const auto [entry, added] = this->Index.emplace(p, vtkTypeInt64(this->Ids.size()));
+      if (added)
+      {
+        this->Ids.push_back(static_cast<vtkTypeInt64>(ids->GetComponent(p, 0)));
+        this->Keys.push_back(axisKeys[p]);
+        double x[3];
+        owned->GetPoint(p, x);
+        this->Places.insert(this->Places.end(), x, x + 3);
+      }
+      this->Corners.push_back(entry->second);
+    }
+    this->Labels.push_back(label);
+  }
+
+  // In BandTets' layout, as one sender's part.
+  void Pack(vtkTypeInt64Array* numbers, vtkDoubleArray* places) const
+  {
+    numbers->SetNumberOfValues(vtkIdType(2 + 2 * this->Ids.size() + this->Corners.size() + this->Labels.size()));
+    vtkTypeInt64* out = numbers->GetPointer(0);
+    *out++ = vtkTypeInt64(this->Ids.size());
+    *out++ = vtkTypeInt64(this->Labels.size());
+    for (const auto* part : { &this->Ids, &this->Keys, &this->Corners, &this->Labels })
+      out = std::copy(part->begin(), part->end(), out);
+    places->SetNumberOfValues(vtkIdType(this->Places.size()));
+    std::copy(this->Places.begin(), this->Places.end(), places->GetPointer(0));
+  }
+};
+} // namespace
 
 namespace vtkCBC3DBandTets
 {
 BandTets::BandTets()
-  : Rows(vtkSmartPointer<vtkTypeInt64Array>::New())
+  : Numbers(vtkSmartPointer<vtkTypeInt64Array>::New())
   , Places(vtkSmartPointer<vtkDoubleArray>::New())
 {
 }
 
 BandTets::~BandTets() = default;
 
-vtkIdType BandTets::Count() const
-{
-  return this->Rows->GetNumberOfValues() / RowSize;
-}
-
-const vtkTypeInt64* BandTets::Row(vtkIdType r) const
-{
-  return this->Rows->GetPointer(RowSize * r);
-}
-
-const double* BandTets::PlacesOf(vtkIdType r) const
-{
-  return this->Places->GetPointer(12 * r);
-}
-
 void Share(vtkMultiProcessController* controller, vtkUnstructuredGrid* owned, const std::vector<std::int64_t>& axisKeys,
-  const std::vector<std::int64_t>& cutKeys, std::int64_t cubeKeys, BandTets& all)
+  const std::vector<std::int64_t>& cutKeys, std::int64_t cubeKeys, BandTets& received)
 {
   const int me = controller->GetLocalProcessId();
-  BandTets mine;
+  const int ranks = controller->GetNumberOfProcesses();
+  std::vector<Outgoing> outgoing(ranks);
   vtkDataArray* ids = owned->GetPointData()->GetArray(vtkCBC3DArrayNames::GlobalIds);
   vtkDataArray* labels = owned->GetCellData()->GetArray(vtkCBC3DArrayNames::Label);
-  auto nearCut = [&](vtkIdType p) {
-    return std::any_of(cutKeys.begin(), cutKeys.end(),
-      [&](std::int64_t cut) { return std::abs(axisKeys[p] - cut) <= ReachCubes * cubeKeys; });
-  };
   vtkNew<vtkIdList> corners;
+  std::vector<int> bound;
   for (vtkIdType t = 0; ids && labels && t < owned->GetNumberOfCells(); ++t)
   {
     owned->GetCellPoints(t, corners);
-    if (std::none_of(corners->begin(), corners->end(), nearCut))
-      continue;
-    mine.Rows->InsertNextValue(me);
-    for (const vtkIdType p : *corners)
-    {
-      mine.Rows->InsertNextValue(static_cast<vtkTypeInt64>(ids->GetComponent(p, 0)));
-      double x[3];
-      owned->GetPoint(p, x);
-      for (const double value : x)
-        mine.Places->InsertNextValue(value);
-    }
-    mine.Rows->InsertNextValue(static_cast<vtkTypeInt64>(labels->GetComponent(t, 0)));
-    for (const vtkIdType p : *corners)
-      mine.Rows->InsertNextValue(axisKeys[p]);
+    // The ranks beside each cut near a corner.
+    bound.clear();
+    for (std::size_t c = 0; c < cutKeys.size(); ++c)
+      if (std::any_of(corners->begin(), corners->end(),
+            [&](vtkIdType p) { return std::abs(axisKeys[p] - cutKeys[c]) <= ReachCubes * cubeKeys; }))
+        for (const int rank : { int(c), int(c) + 1 })
+          if (rank != me && rank < ranks && std::find(bound.begin(), bound.end(), rank) == bound.end())
+            bound.push_back(rank);
+    for (const int rank : bound)
+      outgoing[rank].Add(owned, ids, axisKeys, corners, static_cast<vtkTypeInt64>(labels->GetComponent(t, 0)));
   }
-  controller->AllGatherV(mine.Rows, all.Rows);
-  controller->AllGatherV(mine.Places, all.Places);
+  for (int rank = 0; rank < ranks; ++rank)
+  {
+    vtkNew<vtkTypeInt64Array> numbers, numbersHere;
+    vtkNew<vtkDoubleArray> places, placesHere;
+    if (rank != me)
+      outgoing[rank].Pack(numbers, places);
+    outgoing[rank] = Outgoing();
+    controller->GatherV(numbers, numbersHere, rank);
+    controller->GatherV(places, placesHere, rank);
+    if (rank == me)
+    {
+      received.Numbers = numbersHere;
+      received.Places = placesHere;
+    }
+  }
 }
 
 RunMesh::RunMesh(vtkDataArray* labelType)
@@ -137,14 +174,35 @@ void RunMesh::AddOwned(vtkUnstructuredGrid* owned, const std::vector<std::int64_
 }
 
 std::map<vtkTypeInt64, double> RunMesh::AddOthers(
-  const BandTets& all, int me, const std::function<bool(std::int64_t)>& keep)
+  const BandTets& received, const std::function<bool(std::int64_t)>& keep)
 {
   std::map<vtkTypeInt64, double> volumes;
-  for (vtkIdType r = 0; r < all.Count(); ++r)
+  const vtkIdType size = received.Numbers->GetNumberOfValues();
+  for (vtkIdType at = 0, placesAt = 0; at < size;)
   {
-    const vtkTypeInt64* row = all.Row(r);
-    if (row[0] != me && std::any_of(row + 6, row + 10, keep))
-      volumes[row[5]] += this->Add(row + 1, row + 6, all.PlacesOf(r), double(row[5]));
+    const vtkTypeInt64* numbers = received.Numbers->GetPointer(at);
+    const vtkTypeInt64 points = numbers[0], tets = numbers[1];
+    const vtkTypeInt64* ids = numbers + 2;
+    const vtkTypeInt64* keys = ids + points;
+    const vtkTypeInt64* corners = keys + points;
+    const vtkTypeInt64* labels = corners + 4 * tets;
+    const double* places = received.Places->GetPointer(placesAt);
+    for (vtkTypeInt64 t = 0; t < tets; ++t)
+    {
+      vtkTypeInt64 tet[4], tetKeys[4];
+      double tetPlaces[12];
+      for (int c = 0; c < 4; ++c)
+      {
+        const vtkTypeInt64 p = corners[4 * t + c];
+        tet[c] = ids[p];
+        tetKeys[c] = keys[p];
+        std::copy(places + 3 * p, places + 3 * p + 3, tetPlaces + 3 * c);
+      }
+      if (std::any_of(tetKeys, tetKeys + 4, keep))
+        volumes[labels[t]] += this->Add(tet, tetKeys, tetPlaces, double(labels[t]));
+    }
+    at += 2 + 2 * points + 5 * tets;
+    placesAt += 3 * points;
   }
   return volumes;
 }

@@ -3,9 +3,10 @@
  * @brief The tets near the cuts between MPI ranks' slabs, shared, and the meshes that the
  *        deformation runs on built from them (private to vtkCBC3DRankDeformation).
  *
- * Each rank sends the tets it owns within two lattice cubes of a cut: their corners' global ids,
- * undeformed keys along the cut axis and current places, and their labels. A rank then builds
- * the mesh of one run from its own tets and those of its neighbours, on global ids.
+ * Each rank sends the tets it owns within three lattice cubes of a cut to the ranks on either side
+ * of that cut, and to no other: each corner once (global id, undeformed key along the cut axis,
+ * current place), and each tet as four corners and a label. A rank then builds the mesh of one
+ * run from its own tets and those its neighbours sent, on global ids.
  */
 #ifndef vtkCBC3DBandTets_h
 #define vtkCBC3DBandTets_h
@@ -37,24 +38,23 @@ namespace vtkCBC3DBandTets
 constexpr int BandCubes = 2;
 constexpr int ReachCubes = BandCubes + 1;
 
-/// Every rank's tets near its cuts: rows of (rank, four global ids, label, four axis keys) and
-/// the corners' places (twelve values a row).
+/// The tets other ranks sent to this one, sender by sender in rank order. Each sender's part of
+/// `Numbers` is: its point count, its tet count, the points' global ids, their axis keys, the
+/// tets' corners (four indices into its points each) and the tets' labels; its part of `Places`
+/// is the points' places, three values each.
 struct BandTets
 {
   BandTets();
   ~BandTets();
-  vtkSmartPointer<vtkTypeInt64Array> Rows;
+  vtkSmartPointer<vtkTypeInt64Array> Numbers;
   vtkSmartPointer<vtkDoubleArray> Places;
-  static constexpr int RowSize = 10;
-  vtkIdType Count() const;
-  const vtkTypeInt64* Row(vtkIdType r) const;
-  const double* PlacesOf(vtkIdType r) const;
 };
 
 /// Sends this rank's tets (of `owned`, with GlobalIds; `axisKeys` per point) that have a corner
-/// within ReachCubes of a cut, and gathers every rank's. A collective call.
+/// within ReachCubes of a cut to the two ranks beside that cut, and receives those sent to it.
+/// `cutKeys[c]` is the cut between ranks c and c + 1. A collective call.
 void Share(vtkMultiProcessController* controller, vtkUnstructuredGrid* owned, const std::vector<std::int64_t>& axisKeys,
-  const std::vector<std::int64_t>& cutKeys, std::int64_t cubeKeys, BandTets& all);
+  const std::vector<std::int64_t>& cutKeys, std::int64_t cubeKeys, BandTets& received);
 
 /// A mesh for one run of the deformation filter, made tet by tet on global ids: each point once,
 /// with its axis key; fixed unless freed.
@@ -70,9 +70,9 @@ public:
   /// The tets of `owned` whose corners' keys satisfy `keep` (any corner), in their order.
   void AddOwned(vtkUnstructuredGrid* owned, const std::vector<std::int64_t>& axisKeys,
     const std::function<bool(std::int64_t)>& keep);
-  /// The other ranks' rows (not `me`'s) with a corner whose key satisfies `keep`; returns their
-  /// volume by label.
-  std::map<vtkTypeInt64, double> AddOthers(const BandTets& all, int me, const std::function<bool(std::int64_t)>& keep);
+  /// The tets other ranks sent with a corner whose key satisfies `keep`, sender by sender;
+  /// returns their volume by label.
+  std::map<vtkTypeInt64, double> AddOthers(const BandTets& received, const std::function<bool(std::int64_t)>& keep);
 
   vtkIdType Place(vtkIdType id) const { return this->Local.at(id); }
   const std::unordered_map<vtkIdType, vtkIdType>& Places() const { return this->Local; }

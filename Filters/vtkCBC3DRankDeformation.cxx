@@ -132,7 +132,7 @@ bool WithinBandOf(std::int64_t key, const std::vector<std::int64_t>& cuts, std::
 // them, against its slab and the slices its tets and a little more reach past each cut, the
 // seam points held. Each tissue aims at its slab's voxels, plus the tissue of its tets beyond
 // the slab less its neighbours' inside it (`beyondSlab`), plus the neighbours' held tets.
-std::string DeformOwnTets(const Phases& phases, const Seams& seams, const BandTets& all,
+std::string DeformOwnTets(const Phases& phases, const Seams& seams, const BandTets& received,
   const std::map<vtkTypeInt64, double>& beyondSlab)
 {
   vtkUnstructuredGrid* owned = phases.Owned;
@@ -141,7 +141,7 @@ std::string DeformOwnTets(const Phases& phases, const Seams& seams, const BandTe
   mesh.AddOwned(owned, phases.AxisKeys, [](std::int64_t) { return true; });
   const std::vector<std::int64_t> cuts = phases.OwnCuts();
   std::map<vtkTypeInt64, double> offsets =
-    mesh.AddOthers(all, phases.Me, [&](std::int64_t key) { return WithinBandOf(key, cuts, phases.Band()); });
+    mesh.AddOthers(received, [&](std::int64_t key) { return WithinBandOf(key, cuts, phases.Band()); });
   for (const auto& [label, volume] : beyondSlab)
     offsets[label] += volume;
   std::vector<vtkIdType> free;
@@ -198,10 +198,10 @@ std::vector<vtkIdType> BandMovers(const Phases& phases, const RunMesh& mesh)
 }
 
 // The second phase: the points within two cubes of this rank's upper cut, on both sides, among
-// its tets and its upper neighbour's near that cut (`all`, as the first phase left them), the
+// its tets and its upper neighbour's near that cut (`received`, as the first phase left them), the
 // rest held; then every rank takes the places of its points moved. False on every rank where a
 // rank's run failed (its error in `error`).
-bool DeformBands(vtkMultiProcessController* controller, const Phases& phases, const BandTets& all, std::string& error)
+bool DeformBands(vtkMultiProcessController* controller, const Phases& phases, const BandTets& received, std::string& error)
 {
   vtkNew<vtkTypeInt64Array> sendIds, allIds;
   vtkNew<vtkDoubleArray> sendPlaces, allPlaces;
@@ -213,7 +213,7 @@ bool DeformBands(vtkMultiProcessController* controller, const Phases& phases, co
     RunMesh mesh(owned->GetCellData()->GetArray(vtkCBC3DArrayNames::Label));
     auto near = [&](std::int64_t key) { return std::abs(key - cut) <= reach; };
     mesh.AddOwned(owned, phases.AxisKeys, near);
-    mesh.AddOthers(all, phases.Me, near);
+    mesh.AddOthers(received, near);
     const std::vector<vtkIdType> movers = BandMovers(phases, mesh);
     if (!movers.empty())
     {
@@ -294,12 +294,15 @@ bool DeformAcrossRanks(vtkMultiProcessController* controller, const Layout& layo
     start->DeepCopy(owned->GetPoints());
   // Each slab first, its seam points held, with its neighbours' undeformed tets about it; then
   // the bands about the cuts, from the slabs' tets.
-  BandTets undeformed, deformed;
-  vtkCBC3DBandTets::Share(controller, owned, phases.AxisKeys, layout.CutKeys, layout.CubeKeys, undeformed);
-  if (owned->GetNumberOfCells() > 0)
-    error = DeformOwnTets(phases, seams, undeformed, beyondSlab);
+  {
+    BandTets undeformed;
+    vtkCBC3DBandTets::Share(controller, owned, phases.AxisKeys, layout.CutKeys, layout.CubeKeys, undeformed);
+    if (owned->GetNumberOfCells() > 0)
+      error = DeformOwnTets(phases, seams, undeformed, beyondSlab);
+  }
   if (!vtkCBC3DPieces::AllAgree(controller, error.empty()))
     return false;
+  BandTets deformed;
   vtkCBC3DBandTets::Share(controller, owned, phases.AxisKeys, layout.CutKeys, layout.CubeKeys, deformed);
   if (!DeformBands(controller, phases, deformed, error))
     return false;
