@@ -215,9 +215,16 @@ vtkSmartPointer<vtkUnstructuredGrid> RunMesh::Make(const std::vector<vtkIdType>&
   fixed->Fill(1);
   for (const vtkIdType p : free)
     fixed->SetValue(p, 0);
+  // Sized exactly, in 32 bits where the places fit, and the corners handed over: the run that
+  // follows builds its own copies beside this mesh.
   vtkNew<vtkCellArray> tets;
+  if (this->Points->GetNumberOfPoints() <= VTK_INT_MAX && 4 * this->Corners.size() < std::size_t(VTK_INT_MAX))
+    tets->Use32BitStorage();
+  tets->AllocateExact(vtkIdType(this->Corners.size()), 4 * vtkIdType(this->Corners.size()));
   for (const auto& corners : this->Corners)
     tets->InsertNextCell(4, corners.data());
+  std::vector<std::array<vtkIdType, 4>>().swap(this->Corners);
+  this->Labels->Squeeze();
   auto mesh = vtkSmartPointer<vtkUnstructuredGrid>::New();
   mesh->SetPoints(this->Points);
   mesh->SetCells(VTK_TETRA, tets);

@@ -80,7 +80,8 @@ public:
   /// Each tet's corners, as places.
   const std::vector<std::array<vtkIdType, 4>>& Tets() const { return this->Corners; }
 
-  /// The mesh, with the points at `free` (places) free and the rest fixed.
+  /// The mesh, with the points at `free` (places) free and the rest fixed. Takes the tets:
+  /// Tets() is empty after.
   vtkSmartPointer<vtkUnstructuredGrid> Make(const std::vector<vtkIdType>& free);
 
 private:
