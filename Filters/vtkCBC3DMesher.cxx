@@ -164,7 +164,7 @@ int vtkCBC3DMesher::RequestUpdateExtent(
 
 std::vector<double> vtkCBC3DMesher::SlabWeights(vtkInformation* inputInfo) const
 {
-  return this->BalanceTissue ? vtkCBC3DPieces::TissuePerSlice(inputInfo) : std::vector<double>();
+  return this->BalanceTissue ? vtkCBC3DPieces::BoundaryPerSlice(inputInfo) : std::vector<double>();
 }
 
 bool vtkCBC3DMesher::PreparePiece(vtkImageData* image, vtkInformation* inputInfo, Piece& piece)

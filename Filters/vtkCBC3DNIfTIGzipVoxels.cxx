@@ -248,7 +248,7 @@ vtkSmartPointer<vtkDataArray> InflateNIfTIVoxels(
   return array;
 }
 
-bool CountNIfTITissuePerSlice(
+bool CountNIfTIBoundaryPerSlice(
   const std::string& fileName, int scalarType, const int wholeExtent[6], std::vector<double>& perSlice)
 {
   perSlice.clear();
@@ -267,7 +267,8 @@ bool CountNIfTITissuePerSlice(
     !ReadVoxelLayout(fileName, offset, swap))
     return false;
   GzipStream stream(fileName);
-  std::vector<unsigned char> slice(valueBytes * dims[0] * dims[1]);
+  const std::size_t row = valueBytes * dims[0];
+  std::vector<unsigned char> slice(row * dims[1]), previous(slice.size());
   std::vector<std::int64_t> counts(dims[0] + dims[1] + dims[2], 0);
   std::int64_t* const alongX = counts.data();
   std::int64_t* const alongY = alongX + dims[0];
@@ -278,20 +279,24 @@ bool CountNIfTITissuePerSlice(
   {
     if (!stream.Read(slice.data(), slice.size()))
       return false;
-    const unsigned char* value = slice.data();
+    // Raw bytes compare equal in either byte order.
+    auto differs = [valueBytes](const unsigned char* a, const unsigned char* b) {
+      return std::memcmp(a, b, std::size_t(valueBytes)) != 0;
+    };
     for (std::size_t j = 0; j < dims[1]; ++j)
-      for (std::size_t i = 0; i < dims[0]; ++i, value += valueBytes)
+      for (std::size_t i = 0; i < dims[0]; ++i)
       {
-        unsigned char bits = 0;
-        for (int b = 0; b < valueBytes; ++b)
-          bits |= value[b];
-        if (bits)
+        const std::size_t at = j * row + i * valueBytes;
+        const unsigned char* value = slice.data() + at;
+        if ((i > 0 && differs(value, value - valueBytes)) || (j > 0 && differs(value, value - row)) ||
+          (k > 0 && differs(value, previous.data() + at)))
         {
           ++alongX[i];
           ++alongY[j];
           ++alongZ[k];
         }
       }
+    slice.swap(previous);
   }
   perSlice.assign(counts.begin(), counts.end());
   return true;

@@ -33,7 +33,7 @@
 #include <vector>
 
 vtkStandardNewMacro(vtkCBC3DNIfTIReader);
-vtkInformationKeyMacro(vtkCBC3DNIfTIReader, TISSUE_PER_SLICE, DoubleVector);
+vtkInformationKeyMacro(vtkCBC3DNIfTIReader, BOUNDARY_PER_SLICE, DoubleVector);
 
 namespace
 {
@@ -295,17 +295,17 @@ int vtkCBC3DNIfTIReader::RequestInformation(
   outInfo->Set(vtkDataObject::DIRECTION(), this->Direction, 9);
   vtkDataObject::SetPointDataActiveScalarInfo(
     outInfo, this->Reader->GetDataScalarType(), this->Reader->GetNumberOfScalarComponents());
-  this->GiveTissuePerSlice(outInfo);
+  this->GiveBoundaryPerSlice(outInfo);
   return 1;
 }
 
-void vtkCBC3DNIfTIReader::GiveTissuePerSlice(vtkInformation* outInfo)
+void vtkCBC3DNIfTIReader::GiveBoundaryPerSlice(vtkInformation* outInfo)
 {
-  outInfo->Remove(TISSUE_PER_SLICE());
+  outInfo->Remove(BOUNDARY_PER_SLICE());
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   const bool ranks = controller && controller->GetNumberOfProcesses() > 1;
   // (InflateNIfTIVoxels' file order: only where VTK keeps it.)
-  if (!(ranks || this->CountTissuePerSlice) || this->Reader->GetNumberOfScalarComponents() != 1 ||
+  if (!(ranks || this->CountBoundaryPerSlice) || this->Reader->GetNumberOfScalarComponents() != 1 ||
     !(this->Reader->GetQFac() > 0))
   {
     return;
@@ -319,14 +319,14 @@ void vtkCBC3DNIfTIReader::GiveTissuePerSlice(vtkInformation* outInfo)
     this->CountedFile = this->FileName;
     this->CountedTime = time;
     this->CountedSize = size;
-    if (!CountNIfTITissuePerSlice(this->FileName, this->Reader->GetDataScalarType(), whole, this->TissuePerSlice))
+    if (!CountNIfTIBoundaryPerSlice(this->FileName, this->Reader->GetDataScalarType(), whole, this->BoundaryPerSlice))
     {
-      this->TissuePerSlice.clear(); // (the read itself reports what is wrong with the file)
+      this->BoundaryPerSlice.clear(); // (the read itself reports what is wrong with the file)
     }
   }
-  if (!this->TissuePerSlice.empty())
+  if (!this->BoundaryPerSlice.empty())
   {
-    outInfo->Set(TISSUE_PER_SLICE(), this->TissuePerSlice.data(), int(this->TissuePerSlice.size()));
+    outInfo->Set(BOUNDARY_PER_SLICE(), this->BoundaryPerSlice.data(), int(this->BoundaryPerSlice.size()));
   }
 }
 

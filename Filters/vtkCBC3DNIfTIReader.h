@@ -50,7 +50,7 @@
 #include "vtkImageAlgorithm.h"
 
 #include <string> // For FrameSource
-#include <vector> // For TissuePerSlice
+#include <vector> // For BoundaryPerSlice
 
 class vtkInformationDoubleVectorKey;
 class vtkNIFTIImageReader;
@@ -98,22 +98,22 @@ public:
   vtkGetMacro(InflatedSubExtent, bool);
 
   /**
-   * Information key on the output: the tissue voxels (those of a value other than 0) of each
-   * slice of the whole image, along x, then y, then z (nx + ny + nz values). vtkCBC3DMesher cuts
+   * Information key on the output: the boundary voxels (those whose value differs from that of
+   * the voxel before them along x, y or z) of each slice of the whole image, along x, then y, then z (nx + ny + nz values). vtkCBC3DMesher cuts
    * its slabs over MPI ranks so that they hold about as much of it each. RequestInformation sets
-   * it when several MPI ranks run the pipeline, or when CountTissuePerSlice is on, for a NIfTI-1
+   * it when several MPI ranks run the pipeline, or when CountBoundaryPerSlice is on, for a NIfTI-1
    * file (.nii or .nii.gz) of one volume in VTK's slice order: one pass over the voxels, a slice
    * at a time, on each rank. The count is kept while the file stays the same.
    */
-  static vtkInformationDoubleVectorKey* TISSUE_PER_SLICE();
+  static vtkInformationDoubleVectorKey* BOUNDARY_PER_SLICE();
 
   ///@{
   /**
-   * Whether to give TISSUE_PER_SLICE on one process too. Default: off.
+   * Whether to give BOUNDARY_PER_SLICE on one process too. Default: off.
    */
-  vtkSetMacro(CountTissuePerSlice, bool);
-  vtkGetMacro(CountTissuePerSlice, bool);
-  vtkBooleanMacro(CountTissuePerSlice, bool);
+  vtkSetMacro(CountBoundaryPerSlice, bool);
+  vtkGetMacro(CountBoundaryPerSlice, bool);
+  vtkBooleanMacro(CountBoundaryPerSlice, bool);
   ///@}
 
 protected:
@@ -129,7 +129,7 @@ protected:
   std::string FrameSource;
   bool InflatedAtOnce = false;
   bool InflatedSubExtent = false;
-  bool CountTissuePerSlice = false;
+  bool CountBoundaryPerSlice = false;
   double Origin[3] = { 0.0, 0.0, 0.0 };
   double Spacing[3] = { 1.0, 1.0, 1.0 };
   double Direction[9] = { 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0 };
@@ -153,13 +153,13 @@ private:
   // than the file could hold even compressed: the inner reader would read into an empty image,
   // or try to allocate them.
   bool VoxelsFitInFile();
-  // Sets or removes TISSUE_PER_SLICE on `outInfo` (see there).
-  void GiveTissuePerSlice(vtkInformation* outInfo);
+  // Sets or removes BOUNDARY_PER_SLICE on `outInfo` (see there).
+  void GiveBoundaryPerSlice(vtkInformation* outInfo);
 
-  std::string CountedFile; // the file TissuePerSlice counts, with its time and size then
+  std::string CountedFile; // the file BoundaryPerSlice counts, with its time and size then
   long CountedTime = -1;
   unsigned long CountedSize = 0;
-  std::vector<double> TissuePerSlice;
+  std::vector<double> BoundaryPerSlice;
 };
 
 #endif

@@ -65,7 +65,7 @@ std::vector<int> WeightedCuts(int first, int count, int pieces, const double* we
 } // namespace
 
 SlabPlan PlanSlabs(const int wholeExtent[6], const double spacing[3], double h, double haloCubes, int pieces,
-  int piece, const std::vector<double>& tissuePerSlice)
+  int piece, const std::vector<double>& boundaryPerSlice)
 {
   SlabPlan plan;
   plan.Pieces = std::max(1, pieces);
@@ -82,20 +82,20 @@ SlabPlan PlanSlabs(const int wholeExtent[6], const double spacing[3], double h, 
   }
   const int first = wholeExtent[2 * plan.Axis];
   const std::int64_t count = std::int64_t(wholeExtent[2 * plan.Axis + 1]) - first + 1;
-  int dims[3], before = 0; // the slices along the axes before the plan's, in tissuePerSlice
+  int dims[3], before = 0; // the slices along the axes before the plan's, in boundaryPerSlice
   for (int a = 0; a < 3; ++a)
   {
     dims[a] = wholeExtent[2 * a + 1] - wholeExtent[2 * a] + 1;
     before += a < plan.Axis ? dims[a] : 0;
   }
-  const double tissue = tissuePerSlice.size() == std::size_t(dims[0]) + dims[1] + dims[2]
-    ? std::accumulate(tissuePerSlice.begin() + before, tissuePerSlice.begin() + before + count, 0.0)
+  const double boundary = boundaryPerSlice.size() == std::size_t(dims[0]) + dims[1] + dims[2]
+    ? std::accumulate(boundaryPerSlice.begin() + before, boundaryPerSlice.begin() + before + count, 0.0)
     : 0.0;
-  if (tissue > 0.0)
+  if (boundary > 0.0)
   {
     const int thinnest = int(std::min<std::int64_t>(
       count / plan.Pieces, std::int64_t(std::ceil(MinimumSlabCubes * h / spacing[plan.Axis]))));
-    plan.Cuts = WeightedCuts(first, int(count), plan.Pieces, tissuePerSlice.data() + before, thinnest);
+    plan.Cuts = WeightedCuts(first, int(count), plan.Pieces, boundaryPerSlice.data() + before, thinnest);
   }
   else
   {
@@ -346,11 +346,11 @@ bool AddLatticeKeys(vtkUnstructuredGrid* mesh, const LatticeKeys& keys, std::str
   return true;
 }
 
-std::vector<double> TissuePerSlice(vtkInformation* inputInfo)
+std::vector<double> BoundaryPerSlice(vtkInformation* inputInfo)
 {
   // Up through the filters of one input each between the reader and here: ParaView puts its
   // vtkPVPostFilter after every source, and the executives pass on only the keys they know.
-  vtkInformationDoubleVectorKey* key = vtkCBC3DNIfTIReader::TISSUE_PER_SLICE();
+  vtkInformationDoubleVectorKey* key = vtkCBC3DNIfTIReader::BOUNDARY_PER_SLICE();
   for (vtkInformation* info = inputInfo; info;)
   {
     if (info->Has(key))

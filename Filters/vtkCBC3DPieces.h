@@ -53,10 +53,11 @@ constexpr double MinimumSlabCubes = 6.0;
 
 /// Splits the whole extent into `pieces` slabs along the longest physical axis; the halo is
 /// `haloCubes` cubes of edge `h` (mm). The slabs hold an even share of the slices, or, given
-/// `tissuePerSlice` (the tissue voxels of each slice along x, then y, then z, as
-/// vtkCBC3DNIfTIReader::TISSUE_PER_SLICE gives them), an even share of the tissue.
+/// `boundaryPerSlice` (the boundary voxels of each slice along x, then y, then z, as
+/// vtkCBC3DNIfTIReader::BOUNDARY_PER_SLICE gives them), an even share of the boundaries, where
+/// the tets gather.
 SlabPlan PlanSlabs(const int wholeExtent[6], const double spacing[3], double h, double haloCubes, int pieces,
-  int piece, const std::vector<double>& tissuePerSlice = {});
+  int piece, const std::vector<double>& boundaryPerSlice = {});
 
 /// The extent a piece reads: its slab and the halo, within the whole extent.
 void PieceExtent(const SlabPlan& plan, const int wholeExtent[6], int extent[6]);
@@ -73,11 +74,11 @@ bool AgreeOnTissueBox(vtkMultiProcessController* controller, bool has, const int
 /// Whether every rank says yes (a collective: every rank calls it as often).
 bool AllAgree(vtkMultiProcessController* controller, bool yes);
 
-/// The tissue of each slice where the reader counted it (vtkCBC3DNIfTIReader::TISSUE_PER_SLICE,
-/// on the input or up a chain of one-input filters), so that the slabs share the tissue rather
-/// than the slices: the slices of a head's neck and crown hold little of it. Empty where it did
-/// not.
-std::vector<double> TissuePerSlice(vtkInformation* inputInfo);
+/// The boundary voxels of each slice where the reader counted them
+/// (vtkCBC3DNIfTIReader::BOUNDARY_PER_SLICE, on the input or up a chain of one-input filters), so
+/// that the slabs share the boundaries, and so the tets, rather than the slices. Empty where it
+/// did not.
+std::vector<double> BoundaryPerSlice(vtkInformation* inputInfo);
 
 /// The ghost cells asked of a rank's piece (UPDATE_NUMBER_OF_GHOST_LEVELS on `outInfo`), in
 /// VTK's way: vtkGhostCellsGenerator adds the neighbours' tets around the piece, joined by
