@@ -5,7 +5,7 @@ rank's pvbatch under `/usr/bin/time`, against the same run on one process.
     python3 Testing/Benchmark/rank_memory.py [--deformed] PLUGIN IMAGE [RANKS[:HALO[:tissue]] ...]
 
 RANKS:HALO gives the halo in lattice cubes (Rank Halo; 4 when left out), e.g. `2 3 3:2`; a third
-field `tissue` cuts slabs of even tissue (Balance Tissue), e.g. `3:4:tissue`. Prints
+field `tissue` cuts slabs of even tissue boundary (Balance Tissue), e.g. `3:4:tissue`. Prints
 one line a run: ranks, halo, slabs, seconds, tets, each rank's peak (GB), and the largest as a
 share of the one-process run's. Nothing is asserted: the issue's target is a share of 45% on 3 ranks.
 """

@@ -4,7 +4,7 @@
 #   marked DUPLICATECELL in vtkGhostType, and keeps its own tets unmarked. The answer is worked
 #   out here from the pieces without ghost cells. The mesh saved by ParaView's parallel writer
 #   (.pvtu) reads back with every tet once, not counting the tets it marks as ghosts.
-# - Slabs by tissue (Balance Tissue): a ball in the top fifth of a tall NIfTI image.
+# - Slabs by tissue boundary (Balance Tissue): a ball in the top fifth of a tall NIfTI image.
 #   Even slices leave the lower rank no tet (its slab holds no tissue, known by construction);
 #   slabs by tissue give each rank at least a third of the tets.
 import json

@@ -94,29 +94,38 @@ std::vector<char> MarkForFidelity(const LabelImage& image, const TissueComponent
   return marked;
 }
 
-// The tissue tets, their points renumbered, and each one's red level.
+// The tissue tets, their points renumbered in first-use order, and each one's red level. Sized
+// exactly: this mesh and the hierarchy together are the refinement's peak.
 void KeepTissueTets(const LabelImage& image, const RedGreenMesh& hierarchy, const LabelledMesh& mesh,
   TetMesh& out, RefinementResult& result)
 {
   std::vector<PointId> newId(hierarchy.Points().size(), -1);
+  std::size_t kept = 0;
+  PointId points = 0;
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+  {
+    if (!IsTissueLabel(image, mesh.Labels[t]))
+      continue;
+    ++kept;
+    for (const PointId p : mesh.Tets[t])
+      if (newId[p] < 0)
+        newId[p] = points++;
+  }
+  out.Points.resize(std::size_t(points));
+  for (std::size_t p = 0; p < newId.size(); ++p)
+    if (newId[p] >= 0)
+      out.Points[newId[p]] = hierarchy.Points()[p];
+  out.Tets.reserve(kept);
+  out.Labels.reserve(kept);
+  result.Levels.reserve(kept);
   for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
   {
     const std::int32_t label = mesh.Labels[t];
     if (!IsTissueLabel(image, label))
-    {
       continue;
-    }
     Tet tet;
     for (int v = 0; v < 4; ++v)
-    {
-      PointId& id = newId[mesh.Tets[t][v]];
-      if (id < 0)
-      {
-        id = static_cast<PointId>(out.Points.size());
-        out.Points.push_back(hierarchy.Points()[mesh.Tets[t][v]]);
-      }
-      tet[v] = id;
-    }
+      tet[v] = newId[mesh.Tets[t][v]];
     out.Tets.push_back(tet);
     out.Labels.push_back(label);
     const int level = hierarchy.Reds()[mesh.Source[t]].Level;
