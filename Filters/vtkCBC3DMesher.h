@@ -140,10 +140,10 @@ public:
    * out the ranks' tets, memory and time: on the 1 mm New York Head the largest of 3 slabs holds
    * 36% of the tets this way, 54% with even slices and 50% with even tissue voxels. The boundary
    * voxels per slice come from vtkCBC3DNIfTIReader (BOUNDARY_PER_SLICE), upstream of the mesher;
-   * from other readers the slabs stay even. No slab is thinner than 6 lattice cubes. Off by default: the
-   * deformation over ranks holds the points on the cuts in its first run, and where a cut falls
-   * decides which tissue's maximum Hausdorff distance that costs (Documentation: Meshing on a
-   * cluster).
+   * from other readers the slabs stay even. No slab is thinner than 6 lattice cubes. Off by
+   * default: the deformation over ranks holds the points on the cuts in its first run, and where
+   * a cut falls decides which tissue's maximum Hausdorff distance that costs (Documentation:
+   * Meshing on a cluster).
    */
   vtkSetMacro(BalanceTissue, bool);
   vtkGetMacro(BalanceTissue, bool);
@@ -175,7 +175,8 @@ protected:
 private:
   struct Piece;
   bool PreparePiece(vtkImageData* image, vtkInformation* inputInfo, Piece& piece);
-  // The weight of each slice in cutting the slabs: its boundary voxels with BalanceTissue, else none.
+  // The weight of each slice in cutting the slabs: its boundary voxels with BalanceTissue, else
+  // none.
   std::vector<double> SlabWeights(vtkInformation* inputInfo) const;
   bool RunStages(vtkImageData* image, Piece* piece, vtkUnstructuredGrid* output);
   bool FinishStage(const char* name, const std::string& error, Piece* piece);

@@ -273,16 +273,16 @@ bool CountNIfTIBoundaryPerSlice(
   std::int64_t* const alongX = counts.data();
   std::int64_t* const alongY = alongX + dims[0];
   std::int64_t* const alongZ = alongY + dims[1];
+  // Raw bytes compare equal in either byte order.
+  auto differs = [valueBytes](const unsigned char* a, const unsigned char* b) {
+    return std::memcmp(a, b, std::size_t(valueBytes)) != 0;
+  };
   if (!stream.Skip(offset))
     return false;
   for (std::size_t k = 0; k < dims[2]; ++k)
   {
     if (!stream.Read(slice.data(), slice.size()))
       return false;
-    // Raw bytes compare equal in either byte order.
-    auto differs = [valueBytes](const unsigned char* a, const unsigned char* b) {
-      return std::memcmp(a, b, std::size_t(valueBytes)) != 0;
-    };
     for (std::size_t j = 0; j < dims[1]; ++j)
       for (std::size_t i = 0; i < dims[0]; ++i)
       {

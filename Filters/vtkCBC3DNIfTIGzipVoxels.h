@@ -23,10 +23,10 @@
 vtkSmartPointer<vtkDataArray> InflateNIfTIVoxels(
   const std::string& fileName, int scalarType, const int wholeExtent[6], const int extent[6]);
 
-/// The boundary voxels (of a value other than the voxel's before them along x, y or z) in each slice of a single-file NIfTI-1 image (.nii or
-/// .nii.gz) of `wholeExtent`, along x, then y, then z, into `perSlice`: one pass through zlib's
-/// stream, a slice at a time. False, with `perSlice` empty, where InflateNIfTIVoxels would not
-/// read the file, or the stream ends short.
+/// The boundary voxels (of a value other than the voxel's before them along x, y or z) in each
+/// slice of a single-file NIfTI-1 image (.nii or .nii.gz) of `wholeExtent`, along x, then y,
+/// then z, into `perSlice`: one pass through zlib's stream, a slice at a time. False, with
+/// `perSlice` empty, where InflateNIfTIVoxels would not read the file, or the stream ends short.
 bool CountNIfTIBoundaryPerSlice(
   const std::string& fileName, int scalarType, const int wholeExtent[6], std::vector<double>& perSlice);
 

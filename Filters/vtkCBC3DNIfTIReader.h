@@ -99,8 +99,9 @@ public:
 
   /**
    * Information key on the output: the boundary voxels (those whose value differs from that of
-   * the voxel before them along x, y or z) of each slice of the whole image, along x, then y, then z (nx + ny + nz values). vtkCBC3DMesher cuts
-   * its slabs over MPI ranks so that they hold about as much of it each. RequestInformation sets
+   * the voxel before them along x, y or z) of each slice of the whole image, along x, then y,
+   * then z (nx + ny + nz values). vtkCBC3DMesher cuts its slabs over MPI ranks so that they
+   * hold about as much of it each. RequestInformation sets
    * it when several MPI ranks run the pipeline, or when CountBoundaryPerSlice is on, for a NIfTI-1
    * file (.nii or .nii.gz) of one volume in VTK's slice order: one pass over the voxels, a slice
    * at a time, on each rank. The count is kept while the file stays the same.
