@@ -19,11 +19,15 @@
 #include <vtkPolyData.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkPoints.h>
+#include <vtkSmartPointer.h>
+#include <vtkTypeInt32Array.h>
+#include <vtkTypeInt64Array.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <sstream>
 
 namespace vtkCBC3DConvert
@@ -212,6 +216,31 @@ bool ToLabelImage(vtkImageData* image, vtkDataArray* labels,
   return true;
 }
 
+namespace
+{
+// A cell array's offsets for `count` tets, and its connectivity, in the array type Ids.
+template <typename Ids>
+vtkSmartPointer<Ids> TetOffsets(vtkIdType count)
+{
+  auto offsets = vtkSmartPointer<Ids>::New();
+  offsets->SetNumberOfValues(count + 1);
+  for (vtkIdType t = 0; t <= count; ++t)
+    offsets->SetValue(t, static_cast<typename Ids::ValueType>(4 * t));
+  return offsets;
+}
+
+template <typename Ids>
+vtkSmartPointer<Ids> TetConnectivity(const std::vector<cbc3d::Tet>& tets)
+{
+  auto connectivity = vtkSmartPointer<Ids>::New();
+  connectivity->SetNumberOfValues(4 * vtkIdType(tets.size()));
+  auto* out = connectivity->GetPointer(0);
+  for (const cbc3d::Tet& tet : tets)
+    out = std::copy(tet.begin(), tet.end(), out);
+  return connectivity;
+}
+} // namespace
+
 void ToUnstructuredGrid(
   const cbc3d::TetMesh& mesh, const cbc3d::LabelCodes& codes, vtkUnstructuredGrid* out)
 {
@@ -226,22 +255,13 @@ void ToUnstructuredGrid(
     points->SetPoint(i, mesh.Points[i].data());
   }
 
-  vtkNew<vtkIdTypeArray> offsets;
-  offsets->SetNumberOfValues(tetCount + 1);
-  vtkNew<vtkIdTypeArray> connectivity;
-  connectivity->SetNumberOfValues(4 * tetCount);
-  for (vtkIdType t = 0; t < tetCount; ++t)
-  {
-    offsets->SetValue(t, 4 * t);
-    for (int v = 0; v < 4; ++v)
-    {
-      connectivity->SetValue(4 * t + v, mesh.Tets[t][v]);
-    }
-  }
-  offsets->SetValue(tetCount, 4 * tetCount);
-
+  // 32-bit connectivity where the offsets fit: half the bytes of vtkIdType's, in every stage's
+  // output the pipeline holds.
   vtkNew<vtkCellArray> cells;
-  cells->SetData(offsets, connectivity);
+  if (4 * tetCount <= vtkIdType(std::numeric_limits<vtkTypeInt32>::max()))
+    cells->SetData(TetOffsets<vtkTypeInt32Array>(tetCount), TetConnectivity<vtkTypeInt32Array>(mesh.Tets));
+  else
+    cells->SetData(TetOffsets<vtkTypeInt64Array>(tetCount), TetConnectivity<vtkTypeInt64Array>(mesh.Tets));
   out->Initialize();
   out->SetPoints(points);
   out->SetCells(VTK_TETRA, cells);
@@ -386,6 +406,11 @@ bool FromUnstructuredGrid(vtkUnstructuredGrid* grid, cbc3d::TetMesh& out, std::s
   vtkDataArray* labels = MeshLabels(grid, error);
   if (!labels)
   {
+    return false;
+  }
+  if (grid->GetNumberOfPoints() > vtkIdType(cbc3d::MaxPoints))
+  {
+    error = "the mesh has more than 2^31 - 1 points: mesh it in pieces (over MPI ranks)";
     return false;
   }
   out.Points.resize(grid->GetNumberOfPoints());

@@ -17,6 +17,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkSmartPointer.h>
+#include <vtkTypeInt32Array.h>
 #include <vtkTypeInt64Array.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
@@ -121,6 +122,8 @@ private:
   void FieldData(vtkFieldData* fields);
   void Attributes(const char* element, vtkDataSetAttributes* data);
   bool Cells(vtkUnstructuredGrid* mesh);
+  template <typename Ids>
+  bool CellArrays(vtkUnstructuredGrid* mesh, Ids* connectivity, Ids* offsets);
   void Array(vtkAbstractArray* array, int indent, const std::string& name, bool tuples);
   void Information(vtkInformation* info, int indent);
   void DoubleVector(vtkInformationDoubleVectorKey* key, vtkInformation* info, int indent);
@@ -207,15 +210,19 @@ void VtuDocument::Attributes(const char* element, vtkDataSetAttributes* data)
 bool VtuDocument::Cells(vtkUnstructuredGrid* mesh)
 {
   vtkCellArray* cells = mesh->GetCells();
-  if (!cells->IsStorage64Bit())
-    return false;
-  vtkTypeInt64Array* connectivity = cells->GetConnectivityArray64();
-  vtkTypeInt64Array* offsets = cells->GetOffsetsArray64();
+  return cells->IsStorage64Bit()
+    ? this->CellArrays(mesh, cells->GetConnectivityArray64(), cells->GetOffsetsArray64())
+    : this->CellArrays(mesh, cells->GetConnectivityArray32(), cells->GetOffsetsArray32());
+}
+
+template <typename Ids>
+bool VtuDocument::CellArrays(vtkUnstructuredGrid* mesh, Ids* connectivity, Ids* offsets)
+{
   vtkUnsignedCharArray* types = mesh->GetCellTypesArray();
   const vtkIdType count = mesh->GetNumberOfCells();
   if (offsets->GetNumberOfValues() != count + 1 || types->GetNumberOfValues() != count)
     return false;
-  vtkNew<vtkTypeInt64Array> points, ends;
+  vtkNew<Ids> points, ends;
   vtkNew<vtkUnsignedCharArray> kinds;
   points->SetArray(connectivity->GetPointer(0), connectivity->GetNumberOfValues(), 1);
   ends->SetArray(offsets->GetPointer(1), count, 1);

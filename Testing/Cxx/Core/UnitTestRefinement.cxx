@@ -387,7 +387,7 @@ TEST(TissueComponents, BackgroundRunsJoinAsAFloodFillOverVoxels)
 TEST(StrayComponents, ThePieceOwningMostOfAComponentsVoxelsStays)
 {
   const std::vector<cbc3d::Tet> tets(3, cbc3d::Tet{ 0, 1, 2, 3 }); // geometry is not read
-  const std::vector<std::array<std::int64_t, 4>> across = { { 1, -1, -1, -1 }, { 0, 2, -1, -1 }, { 1, -1, -1, -1 } };
+  const std::vector<cbc3d::TetNeighbours> across = { { 1, -1, -1, -1 }, { 0, 2, -1, -1 }, { 1, -1, -1, -1 } };
   cbc3d::TissueComponents components;
   components.Label = { 1 };
   components.Size = { 11 };

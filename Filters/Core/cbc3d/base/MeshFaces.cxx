@@ -202,41 +202,44 @@ std::vector<MeshFace> SurfaceFaces(const TetMesh& mesh, int numberOfThreads)
   });
 }
 
-std::vector<std::array<std::int64_t, 4>> FaceNeighbours(
+std::vector<TetNeighbours> FaceNeighbours(
   const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads)
 {
   // Found through the tets around each point (16 bytes a tet), not from buckets of every face
   // (48 bytes a tet, held beside the answer: the peak of the 1 mm New York Head's refinement).
   const int threads = ThreadCount(numberOfThreads);
   const PointTets around(tets, pointCount);
-  std::vector<std::array<std::int64_t, 4>> across(tets.size(), { -1, -1, -1, -1 });
+  std::vector<TetNeighbours> across(tets.size(), { -1, -1, -1, -1 });
   const std::int64_t tetCount = static_cast<std::int64_t>(tets.size());
   const auto aroundCount = [&around](PointId p) { return around.Start[p + 1] - around.Start[p]; };
+  const auto holds = [](const Tet& tet, PointId p) {
+    return (tet[0] == p) | (tet[1] == p) | (tet[2] == p) | (tet[3] == p);
+  };
 #pragma omp parallel for schedule(dynamic, 4096) num_threads(threads)
   for (std::int64_t t = 0; t < tetCount; ++t)
   {
     for (int i = 0; i < 4; ++i)
     {
-      // The face opposite corner i, searched from its corner with the fewest tets; it has a
-      // neighbour across when exactly one other tet uses it (more: the mesh does not conform).
-      const PointId a = tets[t][(i + 1) % 4], b = tets[t][(i + 2) % 4], c = tets[t][(i + 3) % 4];
-      const PointId from = aroundCount(a) <= aroundCount(b)
-        ? (aroundCount(a) <= aroundCount(c) ? a : c)
-        : (aroundCount(b) <= aroundCount(c) ? b : c);
+      // The face opposite corner i, searched among the tets around its corner with the fewest
+      // (each of them holds that corner); it has a neighbour across when exactly one other tet
+      // holds its other two corners too (more: the mesh does not conform).
+      std::array<PointId, 3> face = { tets[t][(i + 1) % 4], tets[t][(i + 2) % 4], tets[t][(i + 3) % 4] };
+      const int least = aroundCount(face[0]) <= aroundCount(face[1])
+        ? (aroundCount(face[0]) <= aroundCount(face[2]) ? 0 : 2)
+        : (aroundCount(face[1]) <= aroundCount(face[2]) ? 1 : 2);
+      std::swap(face[0], face[least]);
       int others = 0;
       std::int64_t other = -1;
-      for (std::int64_t k = around.Start[from]; k < around.Start[from + 1]; ++k)
+      for (std::int64_t k = around.Start[face[0]]; k < around.Start[face[0] + 1]; ++k)
       {
         const std::int64_t u = around.Tets[k];
-        const Tet& tet = tets[u];
-        const auto uses = [&tet](PointId p) { return std::find(tet.begin(), tet.end(), p) != tet.end(); };
-        if (u != t && uses(a) && uses(b) && uses(c))
+        if (u != t && holds(tets[u], face[1]) && holds(tets[u], face[2]))
         {
           ++others;
           other = u;
         }
       }
-      across[t][i] = others == 1 ? other : -1;
+      across[t][i] = others == 1 ? std::int32_t(other) : -1;
     }
   }
   return across;

@@ -41,7 +41,7 @@ std::vector<MeshFace> SurfaceFaces(const TetMesh& mesh, int numberOfThreads = 1)
 
 /// The tets across each tet's faces in a conforming mesh: Across[t][i] is the tet sharing the
 /// face opposite local vertex i of tet t, or -1 on the mesh boundary.
-std::vector<std::array<std::int64_t, 4>> FaceNeighbours(
+std::vector<TetNeighbours> FaceNeighbours(
   const std::vector<Tet>& tets, std::size_t pointCount, int numberOfThreads = 1);
 
 /// Every distinct face of the mesh.

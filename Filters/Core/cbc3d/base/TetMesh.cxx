@@ -3,14 +3,28 @@
 #include "cbc3d/base/TetGeometry.h"
 
 #include <sstream>
+#include <stdexcept>
 
 namespace cbc3d
 {
+void CheckPointCount(std::size_t points)
+{
+  if (points > MaxPoints)
+  {
+    throw std::length_error("a mesh of more than 2^31 - 1 points: use a larger --bcc-size or a --max-tets "
+                            "budget, or mesh it in pieces (over MPI ranks)");
+  }
+}
+
 Status ValidateTetMesh(const TetMesh& mesh)
 {
   if (mesh.Labels.size() != mesh.Tets.size())
   {
     return Status::Error("the mesh has a different number of labels and tets");
+  }
+  if (mesh.Points.size() > MaxPoints)
+  {
+    return Status::Error("the mesh has more than 2^31 - 1 points");
   }
   const PointId pointCount = static_cast<PointId>(mesh.Points.size());
   for (std::size_t t = 0; t < mesh.Tets.size(); ++t)

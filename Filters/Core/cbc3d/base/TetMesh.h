@@ -11,13 +11,20 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace cbc3d
 {
-using PointId = std::int64_t;
+// Point ids are 32 bits: tets are four of them, and 64-bit ids cost 16 bytes a tet in every copy
+// of the tets a run holds. Where points are made, CheckPointCount keeps them within range.
+using PointId = std::int32_t;
 using Tet = std::array<PointId, 4>;
+/// The tets across a tet's four faces, -1 where none (32-bit tet ids: PointTets and MeshFaces
+/// refuse meshes of 2^31 tets or more).
+using TetNeighbours = std::array<std::int32_t, 4>;
 
 /// A labelled tetrahedral mesh in world coordinates (structure of arrays).
 /// Tets follow VTK_TETRA's vertex order and are positively oriented (see TetTopology.h).
@@ -27,6 +34,12 @@ struct TetMesh
   std::vector<Tet> Tets;
   std::vector<std::int32_t> Labels; // one tissue label per tet
 };
+
+/// The most points a mesh may hold.
+constexpr std::size_t MaxPoints = std::size_t(std::numeric_limits<PointId>::max());
+
+/// Throws std::length_error when a mesh of `points` points would not fit 32-bit point ids.
+void CheckPointCount(std::size_t points);
 
 /// The longest edge of `tet` with its points at `points`.
 double LongestEdgeOf(const std::vector<Eigen::Vector3d>& points, const Tet& tet);

@@ -349,6 +349,7 @@ void AppendTet(const LabelImage& image, const LatticeFrame& frame, const std::ar
     PointId& id = pointOf[ids[v]];
     if (id < 0)
     {
+      CheckPointCount(mesh.Points.size() + 1);
       id = static_cast<PointId>(mesh.Points.size());
       mesh.Points.push_back(image.Origin + image.Direction * frame.Position(ids[v]));
     }

@@ -105,6 +105,7 @@ PointId RedGreenMesh::FindMidpoint(PointId a, PointId b) const
 
 PointId RedGreenMesh::Midpoint(PointId a, PointId b)
 {
+  CheckPointCount(this->PointList.size() + 1);
   const auto inserted = this->Midpoints.Insert(EdgeKey(a, b), PointId(this->PointList.size()));
   if (inserted.second)
   {

@@ -165,7 +165,7 @@ std::map<std::int64_t, std::int32_t> PinComponents(const LabelImage& image,
 // Returns the fidelity of the labels as they end.
 std::map<std::int32_t, TissueFidelity> KeepComponentsAndMakeSound(const LabelImage& image,
   const TissueComponents& components, const ImageRegions* regions, const RefinementParams& params,
-  const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<std::int64_t, 4>>& across,
+  const std::vector<Eigen::Vector3d>& points, const std::vector<TetNeighbours>& across,
   LabelledMesh& mesh, std::vector<char>& componentInMesh, std::int64_t& relabelled)
 {
   std::int64_t restored = 0;

@@ -30,7 +30,7 @@ inline bool IsSmall(const TissueComponents& components, std::int32_t component, 
 /// rank.
 std::map<std::int32_t, TissueFidelity> KeepComponentsAndMakeSound(const LabelImage& image,
   const TissueComponents& components, const ImageRegions* regions, const RefinementParams& params,
-  const std::vector<Eigen::Vector3d>& points, const std::vector<std::array<std::int64_t, 4>>& across,
+  const std::vector<Eigen::Vector3d>& points, const std::vector<TetNeighbours>& across,
   LabelledMesh& mesh, std::vector<char>& componentInMesh, std::int64_t& relabelled);
 } // namespace cbc3d
 

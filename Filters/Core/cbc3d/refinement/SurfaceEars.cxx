@@ -4,7 +4,7 @@
 namespace cbc3d
 {
 std::size_t RemoveSurfaceEars(const std::vector<Tet>& tets,
-  const std::vector<std::array<std::int64_t, 4>>& across, std::size_t pointCount,
+  const std::vector<TetNeighbours>& across, std::size_t pointCount,
   std::vector<std::int32_t>& labels, const std::function<bool(std::int32_t)>& isTissue,
   std::int32_t removed)
 {

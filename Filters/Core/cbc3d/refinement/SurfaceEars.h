@@ -18,7 +18,7 @@ namespace cbc3d
 /// attached to); the search repeats until no such ear is left. `isTissue` tells tissue labels;
 /// `across` is FaceNeighbours(tets). Returns how many tets it relabelled.
 std::size_t RemoveSurfaceEars(const std::vector<Tet>& tets,
-  const std::vector<std::array<std::int64_t, 4>>& across, std::size_t pointCount,
+  const std::vector<TetNeighbours>& across, std::size_t pointCount,
   std::vector<std::int32_t>& labels, const std::function<bool(std::int32_t)>& isTissue,
   std::int32_t removed);
 } // namespace cbc3d

@@ -45,7 +45,7 @@ std::vector<char> ManifoldVertices(const StarRepairer& repairer, std::size_t poi
 } // namespace
 
 ManifoldRepairResult RepairManifoldLabels(const std::vector<Eigen::Vector3d>& points,
-  const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
+  const std::vector<Tet>& tets, const std::vector<TetNeighbours>& across,
   std::int32_t background, const ClassVotes& votes, std::vector<std::int32_t>& classes,
   const std::vector<PointId>& seeds, int numberOfThreads, const std::vector<std::int32_t>& backgroundRegionOfTet)
 {
@@ -110,7 +110,7 @@ ManifoldRepairResult RepairManifoldLabels(const std::vector<Eigen::Vector3d>& po
 }
 
 std::int64_t CountNonManifoldVertices(const std::vector<Eigen::Vector3d>& points,
-  const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
+  const std::vector<Tet>& tets, const std::vector<TetNeighbours>& across,
   std::int32_t background, const std::vector<std::int32_t>& classes)
 {
   const ClassVotes none = [](std::int64_t, std::int32_t) { return std::int64_t(0); };

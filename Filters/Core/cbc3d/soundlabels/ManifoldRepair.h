@@ -42,14 +42,14 @@ struct ManifoldRepairResult
 /// vertices examined at first; without them, every vertex is first checked in parallel on
 /// `numberOfThreads` threads (0 = all cores). Deterministic: the same for any thread count.
 ManifoldRepairResult RepairManifoldLabels(const std::vector<Eigen::Vector3d>& points,
-  const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
+  const std::vector<Tet>& tets, const std::vector<TetNeighbours>& across,
   std::int32_t background, const ClassVotes& votes, std::vector<std::int32_t>& classes,
   const std::vector<PointId>& seeds = {}, int numberOfThreads = 1,
   const std::vector<std::int32_t>& backgroundRegionOfTet = {});
 
 /// The vertices where some class is not manifold (the condition RepairManifoldLabels makes).
 std::int64_t CountNonManifoldVertices(const std::vector<Eigen::Vector3d>& points,
-  const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
+  const std::vector<Tet>& tets, const std::vector<TetNeighbours>& across,
   std::int32_t background, const std::vector<std::int32_t>& classes);
 } // namespace cbc3d
 

@@ -43,7 +43,7 @@ struct SoundLabelsResult
 /// nothing else works. Returns what it did.
 SoundLabelsResult MakeLabelsSound(const LabelImage& image, const ImageRegions& regions,
   const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
-  const std::vector<std::array<std::int64_t, 4>>& across,
+  const std::vector<TetNeighbours>& across,
   const std::vector<LabelCounts>& counts, const VoxelOwners& voxelOwner,
   const std::map<std::int64_t, std::int32_t>& pinned, std::int32_t background,
   std::vector<std::int32_t>& labels, int numberOfThreads = 1);

@@ -19,7 +19,7 @@ class StarRepairer
 {
 public:
   StarRepairer(const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
-    const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
+    const std::vector<TetNeighbours>& across, std::int32_t background,
     const ClassVotes& votes, std::vector<std::int32_t>& classes,
     const std::vector<std::int32_t>& backgroundRegionOfTet = {})
     : TetList(tets)
@@ -82,7 +82,7 @@ private:
   void Unify(VertexStar& star, bool byRank, std::vector<std::int64_t>& changed);
 
   const std::vector<Tet>& TetList;
-  const std::vector<std::array<std::int64_t, 4>>& Across;
+  const std::vector<TetNeighbours>& Across;
   StarLoader Loader;
   std::int32_t Background;
   const ClassVotes& Votes;

@@ -12,7 +12,7 @@ namespace
 {
 // The pieces of every class; node tets.size() is the outside, joined to the boundary's
 // background tets.
-DisjointSets FindPieces(const std::vector<Tet>& tets, const std::vector<std::array<std::int64_t, 4>>& across,
+DisjointSets FindPieces(const std::vector<Tet>& tets, const std::vector<TetNeighbours>& across,
   std::int32_t background, const std::vector<std::int32_t>& classes)
 {
   const std::int64_t outside = static_cast<std::int64_t>(tets.size());
@@ -29,7 +29,7 @@ DisjointSets FindPieces(const std::vector<Tet>& tets, const std::vector<std::arr
 }
 
 // The pieces lying against a tissue of another class.
-std::vector<char> EmbeddedPieces(DisjointSets& pieces, const std::vector<std::array<std::int64_t, 4>>& across,
+std::vector<char> EmbeddedPieces(DisjointSets& pieces, const std::vector<TetNeighbours>& across,
   std::int32_t background, const std::vector<std::int32_t>& classes)
 {
   std::vector<char> embedded(classes.size() + 1, 0);
@@ -93,7 +93,7 @@ std::vector<char> KeptPieces(DisjointSets& pieces, const VoxelOwners& voxelOwner
 } // namespace
 
 std::int64_t RemoveStrayComponents(const std::vector<Tet>& tets,
-  const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
+  const std::vector<TetNeighbours>& across, std::int32_t background,
   const ClassVotes& votes, const VoxelOwners& voxelOwner, const ImageRegions& regions,
   std::vector<std::int32_t>& classes, std::vector<std::int64_t>& changed)
 {

@@ -17,7 +17,7 @@ namespace cbc3d
 /// tet, from its rim inwards, to the neighbouring class each tet holds most votes of. Appends
 /// the tets relabelled to `changed`; returns how many pieces went.
 std::int64_t RemoveStrayComponents(const std::vector<Tet>& tets,
-  const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
+  const std::vector<TetNeighbours>& across, std::int32_t background,
   const ClassVotes& votes, const VoxelOwners& voxelOwner, const ImageRegions& regions,
   std::vector<std::int32_t>& classes, std::vector<std::int64_t>& changed);
 } // namespace cbc3d

@@ -85,7 +85,7 @@ bool FindStarViolation(const VertexStar& star, std::int32_t background, StarViol
 }
 
 StarLoader::StarLoader(const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
-  const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
+  const std::vector<TetNeighbours>& across, std::int32_t background,
   const std::vector<std::int32_t>& classes)
   : PointList(points)
   , TetList(tets)

@@ -88,7 +88,7 @@ class StarLoader
 {
 public:
   StarLoader(const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
-    const std::vector<std::array<std::int64_t, 4>>& across, std::int32_t background,
+    const std::vector<TetNeighbours>& across, std::int32_t background,
     const std::vector<std::int32_t>& classes);
 
   /// The star of v, into `star` (scratch reused from vertex to vertex), with the caller's
@@ -111,7 +111,7 @@ private:
 
   const std::vector<Eigen::Vector3d>& PointList;
   const std::vector<Tet>& TetList;
-  const std::vector<std::array<std::int64_t, 4>>& Across;
+  const std::vector<TetNeighbours>& Across;
   PointTets Stars; // the tets around each point
   std::int32_t Background;
   const std::vector<std::int32_t>& Classes;
