@@ -164,7 +164,7 @@ void MeasureDistances(const cbc3d::TetMesh& mesh, const std::vector<cbc3d::Point
   {
     meshPoints.push_back(mesh.Points[id]);
   }
-  const cbc3d::PointGrid meshGrid(meshPoints, voxelSize), imageGrid(boundary, voxelSize);
+  const cbc3d::PointGrid meshGrid(meshPoints, voxelSize, threads), imageGrid(boundary, voxelSize, threads);
   std::vector<double> meshToImage = NearestDistances(meshPoints, imageGrid, boundary, threads);
   std::vector<double> imageToMesh = NearestDistances(boundary, meshGrid, meshPoints, threads);
   row.DistanceCount = meshToImage.size() + imageToMesh.size();

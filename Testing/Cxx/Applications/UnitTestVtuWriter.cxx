@@ -136,6 +136,16 @@ TEST(VtuWriter, WholeBlocksLikeVtk)
   ExpectVtkBytes(SyntheticGrid(4096, 2048)); // Float64 scalars, points, connectivity: whole blocks
 }
 
+TEST(VtuWriter, ThirtyTwoBitCellsLikeVtk)
+{
+  // The stages hand on 32-bit connectivity: written as Int32 arrays, as VTK writes them.
+  auto mesh = SyntheticGrid(40000, 40000);
+  ASSERT_TRUE(mesh->GetCells()->ConvertTo32BitStorage());
+  ASSERT_FALSE(mesh->GetCells()->IsStorage64Bit());
+  ExpectVtkBytes(mesh);
+  EXPECT_NE(OurBytes(mesh, 1).find("<DataArray type=\"Int32\" Name=\"connectivity\""), std::string::npos);
+}
+
 TEST(VtuWriter, PointsWithoutCellsLikeVtk)
 {
   ExpectVtkBytes(SyntheticGrid(20, 0));

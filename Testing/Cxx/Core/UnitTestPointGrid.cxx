@@ -40,6 +40,26 @@ TEST(PointGrid, MatchesBruteForceOnRandomPoints)
   }
 }
 
+TEST(PointGrid, BuiltOnThreadsMatchesBruteForce)
+{
+  // Bucketed on 4 threads: each answer the nearest point's, ties to the lower index.
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> coordinate(-20.0, 20.0);
+  std::vector<Eigen::Vector3d> points(20000);
+  for (auto& p : points)
+    p = Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
+  points[17] = points[9]; // a tie
+  const cbc3d::PointGrid grid(points, 1.0, 4);
+  std::vector<Eigen::Vector3d> queries(200);
+  for (auto& x : queries)
+    x = Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
+  queries.push_back(points[17]);
+  const std::vector<int> nearest = grid.NearestAnyOfAll(queries, 1);
+  for (std::size_t q = 0; q < queries.size(); ++q)
+    EXPECT_EQ(nearest[q], BruteNearest(points, queries[q], 1e9)) << "query " << q;
+  EXPECT_EQ(nearest.back(), 9);
+}
+
 TEST(PointGrid, RadiusTiesAndFilters)
 {
   const std::vector<Eigen::Vector3d> points = { { 2, 0, 0 }, { -2, 0, 0 }, { 0, 5, 0 } };

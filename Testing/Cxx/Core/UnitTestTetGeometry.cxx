@@ -1,10 +1,12 @@
 #include "cbc3d/base/TetGeometry.h"
+#include "cbc3d/base/TetMesh.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 using cbc3d::Vec3;
 
@@ -133,4 +135,11 @@ TEST(TetGeometry, ShareAboveAPlaneHasItsKnownValues)
         }
     EXPECT_NEAR(cbc3d::ShareAbove(d), above / all, 0.01) << d[0] << " " << d[1] << " " << d[2] << " " << d[3];
   }
+}
+
+TEST(TetMesh, PointIdsHoldUpToTwoToTheThirtyOneMinusOnePoints)
+{
+  EXPECT_EQ(cbc3d::MaxPoints, std::size_t(2147483647));
+  EXPECT_NO_THROW(cbc3d::CheckPointCount(cbc3d::MaxPoints));
+  EXPECT_THROW(cbc3d::CheckPointCount(cbc3d::MaxPoints + 1), std::length_error);
 }

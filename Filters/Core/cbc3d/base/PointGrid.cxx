@@ -8,7 +8,7 @@
 
 namespace cbc3d
 {
-PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell)
+PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell, int threads)
   : Points(points)
   , Cell(cell)
 {
@@ -16,11 +16,24 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell)
   {
     return;
   }
+  const std::int64_t count = static_cast<std::int64_t>(points.size());
+  const int workers = ThreadCount(threads);
+  // The bounding box: minima and maxima are exact in any order.
   Eigen::Vector3d lower = points[0], upper = points[0];
-  for (const Eigen::Vector3d& p : points)
+#pragma omp parallel num_threads(workers)
   {
-    lower = lower.cwiseMin(p);
-    upper = upper.cwiseMax(p);
+    Eigen::Vector3d low = points[0], high = points[0];
+#pragma omp for schedule(static) nowait
+    for (std::int64_t i = 0; i < count; ++i)
+    {
+      low = low.cwiseMin(points[i]);
+      high = high.cwiseMax(points[i]);
+    }
+#pragma omp critical(cbc3d_PointGridBounds)
+    {
+      lower = lower.cwiseMin(low);
+      upper = upper.cwiseMax(high);
+    }
   }
   this->Origin = lower;
   // Cells of at least `cell`, and not more cells than about 8 per point, so that a grid over
@@ -34,12 +47,12 @@ PointGrid::PointGrid(const std::vector<Eigen::Vector3d>& points, double cell)
   this->Size = ((extent / this->Cell).array().floor() + 1.0).cast<int>();
   const std::int64_t cells = std::int64_t(this->Size[0]) * this->Size[1] * this->Size[2];
   std::vector<std::int64_t> cellOf(points.size());
-  this->CellStart.assign(cells + 1, 0);
-  for (std::size_t i = 0; i < points.size(); ++i)
-  {
+#pragma omp parallel for schedule(static) num_threads(workers)
+  for (std::int64_t i = 0; i < count; ++i)
     cellOf[i] = this->CellIndex(points[i]);
-    ++this->CellStart[cellOf[i] + 1];
-  }
+  this->CellStart.assign(cells + 1, 0);
+  for (const std::int64_t c : cellOf)
+    ++this->CellStart[c + 1];
   for (std::int64_t c = 0; c < cells; ++c)
   {
     this->CellStart[c + 1] += this->CellStart[c];

@@ -19,7 +19,8 @@ namespace cbc3d
 class PointGrid
 {
 public:
-  PointGrid(const std::vector<Eigen::Vector3d>& points, double cell);
+  /// Buckets `points` on `threads` threads (0: all cores); the grid is the same for any number.
+  PointGrid(const std::vector<Eigen::Vector3d>& points, double cell, int threads = 1);
 
   /// The nearest point within `radius` that `accept(index)` takes; -1 if none. Ties go to the
   /// lower index, so the answer does not depend on the order of the search. The search visits

@@ -1,5 +1,7 @@
 #include "cbc3d/deformation/ElasticStep.h"
 
+#include "cbc3d/base/Parallel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -18,6 +20,17 @@ constexpr double Tolerance = 1e-4;
 // again from the step reached (its residual computed afresh).
 constexpr int ChunkIterations = 50;
 constexpr int Chunks = 20;
+
+// Calls set(i) for every entry i < n on the threads. The updates are elementwise, so their
+// values are the same for any number of threads; the dot products stay on one thread (their
+// order of sums decides the last bits of the step).
+template <typename Set>
+void ForEachEntry(Eigen::Index n, int threads, const Set& set)
+{
+#pragma omp parallel for schedule(static) num_threads(ThreadCount(threads))
+  for (Eigen::Index i = 0; i < n; ++i)
+    set(i);
+}
 } // namespace
 
 ElasticStep::ElasticStep(BlockMatrix&& stiffness)
@@ -80,21 +93,28 @@ bool ElasticStep::Iterate(const Eigen::VectorXd& loads, int iterations, int thre
   Eigen::VectorXd direction = this->InverseDiagonal.cwiseProduct(residual);
   Eigen::VectorXd preconditioned(direction.size());
   double rho = residual.dot(direction); // r . M^-1 r
+  const Eigen::Index n = direction.size();
+  double *du = this->Du.data(), *r = residual.data(), *d = direction.data(), *z = preconditioned.data();
+  const double *ad = product.data(), *inverse = this->InverseDiagonal.data();
   for (int i = 0; i < iterations; ++i)
   {
     this->System.Multiply(direction, product, threads);
+    ad = product.data();
     const double alpha = rho / direction.dot(product);
-    this->Du += alpha * direction;
-    residual -= alpha * product;
+    ForEachEntry(n, threads, [&](Eigen::Index k) {
+      du[k] += alpha * d[k];
+      r[k] -= alpha * ad[k];
+    });
     residualNorm2 = residual.squaredNorm();
     if (residualNorm2 < threshold)
     {
       break;
     }
-    preconditioned = this->InverseDiagonal.cwiseProduct(residual);
+    ForEachEntry(n, threads, [&](Eigen::Index k) { z[k] = inverse[k] * r[k]; });
     const double previous = rho;
     rho = residual.dot(preconditioned);
-    direction = preconditioned + (rho / previous) * direction;
+    const double beta = rho / previous;
+    ForEachEntry(n, threads, [&](Eigen::Index k) { d[k] = z[k] + beta * d[k]; });
   }
   return std::sqrt(residualNorm2 / loadNorm2) <= Tolerance;
 }

@@ -65,7 +65,7 @@ FidelityGuard::FidelityGuard(const LabelImage& image, const TissueVoxels& bounda
     {
       return;
     }
-    tissue.Grid = std::make_unique<PointGrid>(tissue.Voxels, cell);
+    tissue.Grid = std::make_unique<PointGrid>(tissue.Voxels, cell, this->Threads);
     tissue.Current = std::make_unique<Snapshot>(tissue.Vertices, mesh.Points, this->VertexCell);
     tissue.Hausdorff = this->Measure(tissue, *tissue.Current);
   }

@@ -60,7 +60,7 @@ Matcher::Matcher(const SurfaceSources& sources, const std::vector<BoundaryTarget
   // element (or as fine as PointGrid's 8 cells per point allow) let a source's search end in
   // the cells around it (Match: brain 0.78 -> 0.65 G instructions, at twice the resolution
   // 2.30 -> 1.58 G; a finer cell gains nothing more). The answers do not depend on the cell.
-  this->TargetGrid = std::make_unique<PointGrid>(this->TargetPoints, 0.25 * this->Cell);
+  this->TargetGrid = std::make_unique<PointGrid>(this->TargetPoints, 0.25 * this->Cell, this->Threads);
 }
 
 void Matcher::Match(const std::vector<Eigen::Vector3d>& x, std::vector<Eigen::Vector3d>& goals,
@@ -74,7 +74,7 @@ void Matcher::Match(const std::vector<Eigen::Vector3d>& x, std::vector<Eigen::Ve
   {
     sourcePoints[s] = x[sources.Points[s]];
   }
-  const PointGrid sourceGrid(sourcePoints, this->Cell);
+  const PointGrid sourceGrid(sourcePoints, this->Cell, this->Threads);
   // Targets are denser than sources on fine images: NearestOfAll shares one candidate list
   // among the targets of a cell.
   const std::vector<int> nearestSource = sourceGrid.NearestOfAll(this->TargetPoints, 2.0 * this->LargestSize,

@@ -263,6 +263,20 @@ void CountVertices(const std::vector<SurfaceTriangle>& triangles, std::size_t po
     }
   });
 }
+// The labels present, ascending; a mesh has few, and its tets come in runs of one label.
+std::vector<std::int32_t> DistinctLabels(const std::vector<std::int32_t>& tetLabels)
+{
+  std::vector<std::int32_t> labels;
+  for (std::size_t t = 0; t < tetLabels.size(); ++t)
+  {
+    if (t > 0 && tetLabels[t] == tetLabels[t - 1])
+      continue;
+    const auto at = std::lower_bound(labels.begin(), labels.end(), tetLabels[t]);
+    if (at == labels.end() || *at != tetLabels[t])
+      labels.insert(at, tetLabels[t]);
+  }
+  return labels;
+}
 } // namespace
 
 bool MeshTopology::SolverReady() const
@@ -280,9 +294,7 @@ MeshTopology MeasureMeshTopology(const TetMesh& mesh, int numberOfThreads)
 MeshTopology MeasureMeshTopology(const TetMesh& mesh, const std::vector<MeshFace>& faces, int numberOfThreads)
 {
   const int threads = ThreadCount(numberOfThreads);
-  std::vector<std::int32_t> labels = mesh.Labels;
-  std::sort(labels.begin(), labels.end());
-  labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+  const std::vector<std::int32_t> labels = DistinctLabels(mesh.Labels);
   std::vector<int> regionOfTet(mesh.Tets.size());
   for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
   {
@@ -291,8 +303,16 @@ MeshTopology MeasureMeshTopology(const TetMesh& mesh, const std::vector<MeshFace
   }
 
   std::vector<RegionTopology> regions(1 + labels.size());
-  CountFaceComponents(faces, regionOfTet, regions);
-  CountVertexComponents(mesh, regionOfTet, regions);
+  // The two counts fill different figures of the regions: one thread each.
+  RegionErrors errors;
+#pragma omp parallel sections num_threads(std::min(threads, 2))
+  {
+#pragma omp section
+    errors.Run([&] { CountFaceComponents(faces, regionOfTet, regions); });
+#pragma omp section
+    errors.Run([&] { CountVertexComponents(mesh, regionOfTet, regions); });
+  }
+  errors.Rethrow();
   const std::vector<SurfaceTriangle> triangles = SurfaceTriangles(faces, regionOfTet, regions);
   CountEdges(triangles, mesh.Points.size(), threads, regions);
   CountVertices(triangles, mesh.Points.size(), threads, regions);

@@ -29,7 +29,7 @@ BoundaryCoverage::BoundaryCoverage(const LabelImage& image, const TissueComponen
       }
     }
     // Boundary voxels are dense: a grid of a few voxels per cell keeps each query short.
-    tissue.Grid = std::make_unique<PointGrid>(tissue.Centres, 2.0 * image.Spacing.maxCoeff());
+    tissue.Grid = std::make_unique<PointGrid>(tissue.Centres, 2.0 * image.Spacing.maxCoeff(), numberOfThreads);
   }
 }
 
@@ -135,7 +135,8 @@ void BoundaryCoverage::FindTissueGaps(std::int32_t label, const Tissue& tissue, 
     }
   }
   const double cell = std::max(distance, 1e-6);
-  const PointGrid vertexGrid(predicted.Vertices, cell), faceGrid(predicted.Centroids, cell);
+  const PointGrid vertexGrid(predicted.Vertices, cell, this->Threads),
+    faceGrid(predicted.Centroids, cell, this->Threads);
   const std::int64_t voxelCount = static_cast<std::int64_t>(tissue.Centres.size());
   std::vector<int> nearestFace(voxelCount, -1);
   std::vector<char> far(voxelCount, 0);
@@ -199,7 +200,7 @@ std::vector<std::pair<double, BoundaryCoverage::Face>> BoundaryCoverage::Nearest
     }
     if (centroids.empty())
       continue;
-    const PointGrid grid(centroids, 2.0 * this->Reach);
+    const PointGrid grid(centroids, 2.0 * this->Reach, this->Threads);
     for (std::size_t v = 0; v < voxels.size(); ++v)
     {
       if (voxels[v].first != label)
