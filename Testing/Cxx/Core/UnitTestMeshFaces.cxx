@@ -3,6 +3,7 @@
 #include "TestMeshes.h"
 
 #include "cbc3d/base/MeshFaces.h"
+#include "cbc3d/base/PointTets.h"
 
 #include <gtest/gtest.h>
 
@@ -204,6 +205,31 @@ TEST(MeshFaces, SelectingOverASubsetGivesTheFacesOfThoseTetsByTheirIds)
       EXPECT_EQ(selected[f].TetCount, expected[f].TetCount);
       for (int side = 0; side < expected[f].TetCount; ++side)
         EXPECT_EQ(selected[f].Tets[side], subset[expected[f].Tets[side]]);
+    }
+  }
+}
+
+TEST(PointTets, EachPointListsItsTetsAscendingOnAnyThreads)
+{
+  // A block of 9^3 cubes: an inner vertex of the Kuhn grid lies in 24 tets, a corner in 1 or 6.
+  const cbc3d::TetMesh mesh = Block(9);
+  std::vector<std::vector<std::int32_t>> expected(mesh.Points.size());
+  for (std::size_t t = 0; t < mesh.Tets.size(); ++t)
+    for (const cbc3d::PointId p : mesh.Tets[t])
+      expected[p].push_back(static_cast<std::int32_t>(t));
+  std::size_t most = 0;
+  for (const auto& tets : expected)
+    most = std::max(most, tets.size());
+  EXPECT_EQ(most, 24u);
+  for (const int threads : { 1, 2, 4 })
+  {
+    const cbc3d::PointTets around(mesh.Tets, mesh.Points.size(), threads);
+    ASSERT_EQ(around.Start.size(), mesh.Points.size() + 1);
+    for (std::size_t p = 0; p < mesh.Points.size(); ++p)
+    {
+      const std::vector<std::int32_t> listed(
+        around.Tets.begin() + around.Start[p], around.Tets.begin() + around.Start[p + 1]);
+      ASSERT_EQ(listed, expected[p]) << "point " << p << ", " << threads << " threads";
     }
   }
 }

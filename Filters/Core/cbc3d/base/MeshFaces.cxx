@@ -208,7 +208,7 @@ std::vector<TetNeighbours> FaceNeighbours(
   // Found through the tets around each point (16 bytes a tet), not from buckets of every face
   // (48 bytes a tet, held beside the answer: the peak of the 1 mm New York Head's refinement).
   const int threads = ThreadCount(numberOfThreads);
-  const PointTets around(tets, pointCount);
+  const PointTets around(tets, pointCount, threads);
   std::vector<TetNeighbours> across(tets.size(), { -1, -1, -1, -1 });
   const std::int64_t tetCount = static_cast<std::int64_t>(tets.size());
   const auto aroundCount = [&around](PointId p) { return around.Start[p + 1] - around.Start[p]; };

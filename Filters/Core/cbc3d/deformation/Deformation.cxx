@@ -47,7 +47,8 @@ public:
     , Params(params)
     , Bounds(bounds)
     , NegligibleMove(negligibleMove)
-    , Smoothing(mesh.Tets, mesh.Points.size(), bounds.EdgeLimits.empty() ? nullptr : &bounds.EdgeLimits)
+    , Smoothing(mesh.Tets, mesh.Points.size(), bounds.EdgeLimits.empty() ? nullptr : &bounds.EdgeLimits,
+        params.NumberOfThreads)
     , Reach(mesh.Points.size())
     , Search(mesh.Points.size())
     , Interior(mesh.Points.size(), 1)

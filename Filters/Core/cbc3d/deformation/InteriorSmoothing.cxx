@@ -8,10 +8,10 @@
 namespace cbc3d
 {
 InteriorSmoothing::InteriorSmoothing(const std::vector<Tet>& tets, std::size_t pointCount,
-  const std::vector<double>* edgeLimits)
+  const std::vector<double>* edgeLimits, int threads)
   : Tets(tets)
   , EdgeLimits(edgeLimits)
-  , Around(tets, pointCount)
+  , Around(tets, pointCount, threads)
 {
 }
 

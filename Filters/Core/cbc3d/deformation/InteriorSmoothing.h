@@ -20,8 +20,9 @@ class InteriorSmoothing
 {
 public:
   /// `edgeLimits` (one per tet, mm; 0 = none), where given: no move makes a tet's edge longer.
+  /// The tets around each point are listed on `threads` threads.
   InteriorSmoothing(const std::vector<Tet>& tets, std::size_t pointCount,
-    const std::vector<double>* edgeLimits = nullptr);
+    const std::vector<double>* edgeLimits = nullptr, int threads = 1);
 
   /// Sweeps over the movable points in point order (a Gauss-Seidel sweep: each move sees the
   /// moves before it), until a sweep moves none or `sweeps` are done. Returns how many moves it

@@ -133,7 +133,7 @@ BlockMatrix AssembleStiffness(const TetMesh& mesh,
   // large meshes, and a stop request is looked for between the chunks. (Building the matrix
   // from 144 triplets per tet needed 16 bytes per triplet: 1.5 GB on a 650k-tet mesh.)
   const int threads = ThreadCount(numberOfThreads);
-  const PointTets around(mesh.Tets, mesh.Points.size());
+  const PointTets around(mesh.Tets, mesh.Points.size(), threads);
   const std::int64_t n = static_cast<std::int64_t>(mesh.Points.size());
   BlockMatrix stiffness;
   stiffness.RowStart.assign(n + 1, 0);

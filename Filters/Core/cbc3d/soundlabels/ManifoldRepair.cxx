@@ -51,7 +51,7 @@ ManifoldRepairResult RepairManifoldLabels(const std::vector<Eigen::Vector3d>& po
 {
   ManifoldRepairResult result;
   const std::size_t pointCount = points.size();
-  StarRepairer repairer(points, tets, across, background, votes, classes, backgroundRegionOfTet);
+  StarRepairer repairer(points, tets, across, background, votes, classes, backgroundRegionOfTet, numberOfThreads);
   std::deque<PointId> queue;
   std::vector<char> queued(pointCount, 0);
   std::vector<int> visits(pointCount, 0);

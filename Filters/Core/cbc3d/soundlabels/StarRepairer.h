@@ -21,10 +21,10 @@ public:
   StarRepairer(const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
     const std::vector<TetNeighbours>& across, std::int32_t background,
     const ClassVotes& votes, std::vector<std::int32_t>& classes,
-    const std::vector<std::int32_t>& backgroundRegionOfTet = {})
+    const std::vector<std::int32_t>& backgroundRegionOfTet = {}, int threads = 1)
     : TetList(tets)
     , Across(across)
-    , Loader(points, tets, across, background, classes)
+    , Loader(points, tets, across, background, classes, threads)
     , Background(background)
     , Votes(votes)
     , Classes(classes)

@@ -86,11 +86,11 @@ bool FindStarViolation(const VertexStar& star, std::int32_t background, StarViol
 
 StarLoader::StarLoader(const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
   const std::vector<TetNeighbours>& across, std::int32_t background,
-  const std::vector<std::int32_t>& classes)
+  const std::vector<std::int32_t>& classes, int threads)
   : PointList(points)
   , TetList(tets)
   , Across(across)
-  , Stars(tets, points.size())
+  , Stars(tets, points.size(), threads)
   , Background(background)
   , Classes(classes)
 {

@@ -87,9 +87,10 @@ bool FindStarViolation(const VertexStar& star, std::int32_t background, StarViol
 class StarLoader
 {
 public:
+  /// The tets around each vertex are listed on `threads` threads.
   StarLoader(const std::vector<Eigen::Vector3d>& points, const std::vector<Tet>& tets,
     const std::vector<TetNeighbours>& across, std::int32_t background,
-    const std::vector<std::int32_t>& classes);
+    const std::vector<std::int32_t>& classes, int threads = 1);
 
   /// The star of v, into `star` (scratch reused from vertex to vertex), with the caller's
   /// tet -> node scratch `localOf` (all -1, and left so).
