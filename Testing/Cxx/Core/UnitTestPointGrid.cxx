@@ -20,21 +20,25 @@ int BruteNearest(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector
   }
   return best;
 }
+
+// `count` points uniform in the cube [-20, 20]^3, drawn from `random`.
+std::vector<Eigen::Vector3d> RandomPoints(std::size_t count, std::mt19937& random)
+{
+  std::uniform_real_distribution<double> coordinate(-20.0, 20.0);
+  std::vector<Eigen::Vector3d> points(count);
+  for (auto& p : points)
+    p = Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
+  return points;
+}
 } // namespace
 
 TEST(PointGrid, MatchesBruteForceOnRandomPoints)
 {
   std::mt19937 random(7);
-  std::uniform_real_distribution<double> coordinate(-20.0, 20.0);
-  std::vector<Eigen::Vector3d> points(500);
-  for (auto& p : points)
-  {
-    p = Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
-  }
+  const std::vector<Eigen::Vector3d> points = RandomPoints(500, random);
   const cbc3d::PointGrid grid(points, 1.5);
-  for (int q = 0; q < 300; ++q)
+  for (const Eigen::Vector3d& x : RandomPoints(300, random))
   {
-    const Eigen::Vector3d x(coordinate(random), coordinate(random), coordinate(random));
     EXPECT_EQ(grid.Nearest(x, 3.0), BruteNearest(points, x, 3.0));
     EXPECT_EQ(grid.NearestAny(x), BruteNearest(points, x, 1e9));
   }
@@ -44,15 +48,10 @@ TEST(PointGrid, BuiltOnThreadsMatchesBruteForce)
 {
   // Bucketed on 4 threads: each answer the nearest point's, ties to the lower index.
   std::mt19937 random(11);
-  std::uniform_real_distribution<double> coordinate(-20.0, 20.0);
-  std::vector<Eigen::Vector3d> points(20000);
-  for (auto& p : points)
-    p = Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
+  std::vector<Eigen::Vector3d> points = RandomPoints(20000, random);
   points[17] = points[9]; // a tie
   const cbc3d::PointGrid grid(points, 1.0, 4);
-  std::vector<Eigen::Vector3d> queries(200);
-  for (auto& x : queries)
-    x = Eigen::Vector3d(coordinate(random), coordinate(random), coordinate(random));
+  std::vector<Eigen::Vector3d> queries = RandomPoints(200, random);
   queries.push_back(points[17]);
   const std::vector<int> nearest = grid.NearestAnyOfAll(queries, 1);
   for (std::size_t q = 0; q < queries.size(); ++q)
