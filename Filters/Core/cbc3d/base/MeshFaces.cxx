@@ -5,9 +5,7 @@
 
 #include <algorithm>
 #include <functional>
-#include <limits>
 #include <memory>
-#include <stdexcept>
 
 namespace cbc3d
 {
@@ -86,11 +84,8 @@ template <typename TetOf>
 FaceBuckets BucketFaces(const std::vector<Tet>& tets, std::int64_t tetCount, const TetOf& tetOf,
   std::uint64_t pointCount, int threads)
 {
-  if (pointCount >= (std::uint64_t{ 1 } << 32) ||
-    tets.size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
-  {
-    throw std::length_error("mesh faces: more than 2^32 points or 2^31 - 1 tets"); // the ids would not fit
-  }
+  CheckPointCount(pointCount); // the entries hold 32-bit ids
+  CheckTetCount(tets.size());
   // Faces of a tet with sorted corners a < b < c < d: bcd, acd, abd, abc.
   FaceBuckets buckets;
   buckets.Start.assign(pointCount + 1, 0);

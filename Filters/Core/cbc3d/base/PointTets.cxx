@@ -3,18 +3,13 @@
 #include "cbc3d/base/Parallel.h"
 
 #include <algorithm>
-#include <limits>
-#include <stdexcept>
 
 namespace cbc3d
 {
 PointTets::PointTets(const std::vector<Tet>& tets, std::size_t pointCount, int threads)
   : Start(pointCount + 1, 0)
 {
-  if (tets.size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
-  {
-    throw std::length_error("a mesh of more than 2^31 - 1 tets: mesh it in pieces (over MPI ranks)");
-  }
+  CheckTetCount(tets.size());
   const int workers = ThreadCount(threads);
   const std::int64_t tetCount = static_cast<std::int64_t>(tets.size());
   std::int64_t* start = this->Start.data();

@@ -2,6 +2,7 @@
 
 #include "cbc3d/base/TetGeometry.h"
 
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -13,6 +14,14 @@ void CheckPointCount(std::size_t points)
   {
     throw std::length_error("a mesh of more than 2^31 - 1 points: use a larger --bcc-size or a --max-tets "
                             "budget, or mesh it in pieces (over MPI ranks)");
+  }
+}
+
+void CheckTetCount(std::size_t tets)
+{
+  if (tets > std::size_t(std::numeric_limits<std::int32_t>::max()))
+  {
+    throw std::length_error("a mesh of more than 2^31 - 1 tets: mesh it in pieces (over MPI ranks)");
   }
 }
 

@@ -22,8 +22,7 @@ namespace cbc3d
 // of the tets a run holds. Where points are made, CheckPointCount keeps them within range.
 using PointId = std::int32_t;
 using Tet = std::array<PointId, 4>;
-/// The tets across a tet's four faces, -1 where none (32-bit tet ids: PointTets and MeshFaces
-/// refuse meshes of 2^31 tets or more).
+/// The tets across a tet's four faces, -1 where none (32-bit tet ids: CheckTetCount).
 using TetNeighbours = std::array<std::int32_t, 4>;
 
 /// A labelled tetrahedral mesh in world coordinates (structure of arrays).
@@ -40,6 +39,10 @@ constexpr std::size_t MaxPoints = std::size_t(std::numeric_limits<PointId>::max(
 
 /// Throws std::length_error when a mesh of `points` points would not fit 32-bit point ids.
 void CheckPointCount(std::size_t points);
+
+/// Throws std::length_error when a mesh of `tets` tets would not fit 32-bit tet ids (the tets
+/// around a point, face neighbours, mesh faces).
+void CheckTetCount(std::size_t tets);
 
 /// The longest edge of `tet` with its points at `points`.
 double LongestEdgeOf(const std::vector<Eigen::Vector3d>& points, const Tet& tet);

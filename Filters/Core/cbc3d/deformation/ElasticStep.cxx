@@ -94,12 +94,12 @@ bool ElasticStep::Iterate(const Eigen::VectorXd& loads, int iterations, int thre
   Eigen::VectorXd preconditioned(direction.size());
   double rho = residual.dot(direction); // r . M^-1 r
   const Eigen::Index n = direction.size();
+  // Multiply keeps `product` at its size: the pointers hold for every iteration.
   double *du = this->Du.data(), *r = residual.data(), *d = direction.data(), *z = preconditioned.data();
   const double *ad = product.data(), *inverse = this->InverseDiagonal.data();
   for (int i = 0; i < iterations; ++i)
   {
     this->System.Multiply(direction, product, threads);
-    ad = product.data();
     const double alpha = rho / direction.dot(product);
     ForEachEntry(n, threads, [&](Eigen::Index k) {
       du[k] += alpha * d[k];

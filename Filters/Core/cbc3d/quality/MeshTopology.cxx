@@ -263,6 +263,7 @@ void CountVertices(const std::vector<SurfaceTriangle>& triangles, std::size_t po
     }
   });
 }
+
 // The labels present, ascending; a mesh has few, and its tets come in runs of one label.
 std::vector<std::int32_t> DistinctLabels(const std::vector<std::int32_t>& tetLabels)
 {
